@@ -1,0 +1,200 @@
+"""The result both solvers return: a static :class:`Profile` along the line, and its summary.
+
+Conventions: s [m] from the bottom end (anchor or touchdown) to the hang-off; x, y, z [m]
+(x towards the hang-off, y up from the seabed, z out of plane); ``theta`` [rad] the tangent
+angle from the horizontal; ``tension`` the effective tension [N]; ``moment`` the bending
+moment magnitude [N m]; ``shear`` the shear force magnitude [N]; ``curvature`` [1/m].
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+PROFILE_COLUMNS = ("s", "x", "y", "z", "tension", "moment", "shear", "curvature", "angle_deg")
+
+
+@dataclass
+class Profile:
+    """Static configuration and internal forces sampled along the line (arrays of shape (n,)).
+
+    ``tdp_s`` is the arc length of the touchdown point [m] (None for a free-hanging line).
+    """
+
+    s: np.ndarray
+    x: np.ndarray
+    y: np.ndarray
+    z: np.ndarray
+    theta: np.ndarray
+    tension: np.ndarray
+    moment: np.ndarray
+    shear: np.ndarray
+    curvature: np.ndarray
+    tdp_s: float | None = None
+    meta: dict = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        for name in ("s", "x", "y", "z", "theta", "tension", "moment", "shear", "curvature"):
+            setattr(self, name, np.asarray(getattr(self, name), dtype=float))
+
+    def is_finite(self) -> bool:
+        return all(np.all(np.isfinite(getattr(self, n))) for n in
+                   ("s", "x", "y", "z", "theta", "tension", "moment", "shear", "curvature"))
+
+    def at(self, s: np.ndarray, name: str) -> np.ndarray:
+        """Linear interpolation of column ``name`` at arc lengths ``s`` [m]."""
+        return np.interp(s, self.s, getattr(self, name))
+
+    def write_csv(self, path: str | Path) -> None:
+        with open(path, "w", newline="") as fh:
+            w = csv.writer(fh)
+            w.writerow(PROFILE_COLUMNS)
+            cols = [self.s, self.x, self.y, self.z, self.tension, self.moment, self.shear,
+                    self.curvature, np.degrees(self.theta)]
+            for row in zip(*cols):
+                w.writerow([f"{v:.10g}" for v in row])
+
+
+def read_profile_csv(path: str | Path) -> Profile:
+    """Read a ``profile.csv`` written by :meth:`Profile.write_csv`."""
+    data = np.genfromtxt(path, delimiter=",", names=True)
+    return Profile(s=data["s"], x=data["x"], y=data["y"], z=data["z"],
+                   theta=np.radians(data["angle_deg"]), tension=data["tension"],
+                   moment=data["moment"], shear=data["shear"], curvature=data["curvature"])
+
+
+def _parabolic_peak(s: np.ndarray, v: np.ndarray, i: int) -> tuple[float, float]:
+    """Vertex (s, v) of the parabola through points i-1, i, i+1 (falls back to point i)."""
+    if i <= 0 or i >= len(s) - 1:
+        return float(s[i]), float(v[i])
+    s0, s1, s2 = s[i - 1], s[i], s[i + 1]
+    v0, v1, v2 = v[i - 1], v[i], v[i + 1]
+    denom = (s0 - s1) * (s0 - s2) * (s1 - s2)
+    if denom == 0.0:
+        return float(s1), float(v1)
+    a = (s2 * (v1 - v0) + s1 * (v0 - v2) + s0 * (v2 - v1)) / denom
+    b = (s2 * s2 * (v0 - v1) + s1 * s1 * (v2 - v0) + s0 * s0 * (v1 - v2)) / denom
+    if a == 0.0:
+        return float(s1), float(v1)
+    sv = -b / (2.0 * a)
+    if not (s0 <= sv <= s2):
+        return float(s1), float(v1)
+    c = v1 - a * s1 * s1 - b * s1
+    return float(sv), float(a * sv * sv + b * sv + c)
+
+
+def waves(profile: Profile, min_prominence: float | None = None) -> tuple[list[dict], list[dict]]:
+    """Crests (local maxima of y) and sag bends (local minima) of the suspended line.
+
+    Only the part above the touchdown point is searched, end points excluded. Extrema
+    whose height differs from the neighbouring extremum by less than ``min_prominence``
+    [m] (default 1e-4 of the height range) are dropped as noise. Each entry is
+    ``{"s", "x", "height"}`` with the vertex refined by a parabola through three samples.
+    """
+    s, x, y = profile.s, profile.x, profile.y
+    start = 0
+    if profile.tdp_s is not None:
+        start = int(np.searchsorted(s, profile.tdp_s + 1e-9))
+    if len(s) - start < 3:
+        return [], []
+    yr = float(np.ptp(y)) if len(y) else 0.0
+    tol = min_prominence if min_prominence is not None else 1e-4 * max(yr, 1e-9)
+    # candidate extrema by sign change of the slope, then enforce alternation + prominence
+    cand: list[tuple[int, str]] = []
+    for i in range(max(start, 1), len(s) - 1):
+        if y[i] > y[i - 1] and y[i] >= y[i + 1]:
+            cand.append((i, "max"))
+        elif y[i] < y[i - 1] and y[i] <= y[i + 1]:
+            cand.append((i, "min"))
+    changed = True
+    while changed and cand:
+        changed = False
+        # neighbours of each extremum: previous/next extremum or the ends of the search range
+        for k, (i, kind) in enumerate(cand):
+            left = y[cand[k - 1][0]] if k > 0 else y[start]
+            right = y[cand[k + 1][0]] if k + 1 < len(cand) else y[-1]
+            if min(abs(y[i] - left), abs(y[i] - right)) < tol:
+                del cand[k]
+                changed = True
+                break
+        # merge equal-kind neighbours, keeping the more extreme one
+        k = 0
+        while k + 1 < len(cand):
+            (i, a), (j, b) = cand[k], cand[k + 1]
+            if a == b:
+                keep_i = (y[i] >= y[j]) if a == "max" else (y[i] <= y[j])
+                del cand[k + 1 if keep_i else k]
+                changed = True
+            else:
+                k += 1
+    crests, sags = [], []
+    for i, kind in cand:
+        sv, yv = _parabolic_peak(s, y, i)
+        item = {"s": sv, "x": float(np.interp(sv, s, x)), "height": yv}
+        (crests if kind == "max" else sags).append(item)
+    return crests, sags
+
+
+def summarize(profile: Profile) -> dict:
+    """Scalar features of a static profile (see README: result columns)."""
+    s = profile.s
+
+    def peak(values: np.ndarray) -> tuple[float, float]:
+        i = int(np.argmax(values))
+        sv, v = _parabolic_peak(s, values, i)
+        return max(v, float(values[i])), sv
+
+    tmax, tmax_s = peak(profile.tension)
+    mmax, mmax_s = peak(profile.moment)
+    fmax, fmax_s = peak(profile.shear)
+    crests, sags = waves(profile)
+    tdp_x = tdp_t = None
+    if profile.tdp_s is not None:
+        tdp_x = float(np.interp(profile.tdp_s, s, profile.x))
+        tdp_t = float(np.interp(profile.tdp_s, s, profile.tension))
+    out = {
+        "hang_off_tension": float(profile.tension[-1]),
+        "hang_off_angle_deg": float(np.degrees(profile.theta[-1])),
+        "hang_off_x": float(profile.x[-1]),
+        "hang_off_height": float(profile.y[-1]),
+        "hang_off_z": float(profile.z[-1]),
+        "bottom_tension": float(profile.tension[0]),
+        "tdp_s": None if profile.tdp_s is None else float(profile.tdp_s),
+        "tdp_x": tdp_x,
+        "tdp_tension": tdp_t,
+        "span": float(profile.x[-1] - (tdp_x if tdp_x is not None else profile.x[0])),
+        "length": float(s[-1] - s[0]),
+        "max_tension": tmax, "max_tension_s": tmax_s,
+        "max_moment": mmax, "max_moment_s": mmax_s,
+        "max_shear": fmax, "max_shear_s": fmax_s,
+        "min_tension": float(np.min(profile.tension)),
+        "crests": crests,
+        "sags": sags,
+    }
+    return out
+
+
+def _json_default(o):
+    if isinstance(o, (np.floating, np.integer)):
+        return o.item()
+    if isinstance(o, np.ndarray):
+        return o.tolist()
+    raise TypeError(type(o).__name__)
+
+
+def write_json(data: dict, path: str | Path) -> None:
+    """Write ``data`` as indented JSON; NaN/inf are written as null (never as invalid JSON)."""
+    def clean(v):
+        if isinstance(v, float) and not math.isfinite(v):
+            return None
+        if isinstance(v, dict):
+            return {k: clean(x) for k, x in v.items()}
+        if isinstance(v, (list, tuple)):
+            return [clean(x) for x in v]
+        return v
+    Path(path).write_text(json.dumps(clean(data), indent=2, default=_json_default) + "\n")

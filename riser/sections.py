@@ -1,0 +1,96 @@
+"""Derived section properties per segment, computed once and read by both solvers.
+
+Only *inputs* are derived here (stiffness, weight, drag and added-mass coefficients);
+each solver implements its own force laws and equations, so a dual-method check does
+not share the physics it is meant to verify.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .scene import Scene
+
+
+@dataclass(frozen=True)
+class SegmentProperties:
+    """Properties of one segment, all per unit length of unstretched line.
+
+    Attributes
+    ----------
+    index : position in ``scene.segments`` (0 = bottom).
+    s_start, s_end : arc length of the segment ends from the bottom end [m].
+    EA : axial stiffness [N]; EI : bending stiffness [N m2]; GJ : torsional stiffness [N m2].
+    mass : structural + contents mass [kg/m] (no added mass).
+    rotary_inertia : polar mass moment of inertia per length of the pipe wall [kg m].
+    weight : submerged weight w [N/m], positive downwards (negative = buoyant).
+    hydro_diameter : diameter used for drag and added mass [m].
+    drag_normal_coef : 0.5 rho D C_Dn [kg/m2]; normal drag force per length is
+        drag_normal_coef * |u_n| u_n for the relative normal velocity u_n.
+    drag_tangential_coef : 0.5 rho pi D C_Dt [kg/m2] (Wang et al. eq. (4): uses the perimeter).
+    added_mass : C_a rho pi D^2 / 4 [kg/m], acting normal to the pipe axis.
+    """
+
+    index: int
+    label: str
+    s_start: float
+    s_end: float
+    EA: float
+    EI: float
+    GJ: float
+    mass: float
+    rotary_inertia: float
+    weight: float
+    hydro_diameter: float
+    drag_normal_coef: float
+    drag_tangential_coef: float
+    added_mass: float
+
+    @property
+    def length(self) -> float:
+        return self.s_end - self.s_start
+
+
+def segment_properties(scene: Scene) -> list[SegmentProperties]:
+    """Section properties of every segment of ``scene``, bottom first.
+
+    Submerged weight w = (m_pipe + m_contents) g - rho_w g pi D_o^2 / 4 - buoyancy, where
+    the displaced volume uses the line type's outer diameter; ``submerged_weight``
+    replaces this value when given, and ``weight_scale`` multiplies the result.
+    """
+    g = scene.gravity
+    rho = scene.water_density
+    out: list[SegmentProperties] = []
+    s0 = 0.0
+    for i, seg in enumerate(scene.segments):
+        lt = scene.line_types[seg.line_type]
+        D, d = lt.outer_diameter, lt.inner_diameter
+        contents = lt.contents_density * math.pi / 4.0 * d * d
+        mass = lt.mass_per_length + contents
+        if seg.submerged_weight is not None:
+            w = seg.submerged_weight
+        else:
+            w = mass * g - rho * g * math.pi / 4.0 * D * D - seg.buoyancy
+        w *= seg.weight_scale
+        Dh = seg.hydro_diameter if seg.hydro_diameter is not None else D
+        # polar moment of the wall per length: m_wall (D^2 + d^2) / 8
+        rot = lt.mass_per_length * (D * D + d * d) / 8.0
+        out.append(SegmentProperties(
+            index=i, label=seg.label or f"segment {i + 1}", s_start=s0, s_end=s0 + seg.length,
+            EA=lt.axial_stiffness, EI=lt.bending_stiffness, GJ=lt.torsional_stiffness,
+            mass=mass, rotary_inertia=rot, weight=w, hydro_diameter=Dh,
+            drag_normal_coef=0.5 * rho * Dh * lt.drag_normal,
+            drag_tangential_coef=0.5 * rho * math.pi * Dh * lt.drag_tangential,
+            added_mass=lt.added_mass * rho * math.pi / 4.0 * Dh * Dh,
+        ))
+        s0 += seg.length
+    return out
+
+
+def segment_index_at(props: list[SegmentProperties], s: np.ndarray) -> np.ndarray:
+    """Index of the segment containing arc length s [m] (joints belong to the upper one)."""
+    edges = np.array([p.s_start for p in props[1:]])
+    return np.searchsorted(edges, np.asarray(s), side="right")
