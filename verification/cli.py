@@ -1,0 +1,138 @@
+"""Command line: ``riser-verify <command>``.
+
+Exit codes: 0 success; 1 a solver did not converge (its message is printed); 2 bad input
+(a scene error naming the file and key, or a scene the method cannot represent).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+from riser.errors import SceneError, UnsupportedSceneError
+
+METHODS = ("bvp", "vfife")
+STUDIES = ("wang2014",)
+
+
+def _err(msg: str) -> None:
+    print(f"error: {msg}", file=sys.stderr)
+
+
+def cmd_scenes(args) -> int:
+    from .catalog import list_builtin
+    items = list_builtin()
+    width = max(len(n) for n, _ in items)
+    for name, title in items:
+        print(f"{name:<{width}}  {title}")
+    return 0
+
+
+def solve_scene(scene, method: str, **options):
+    """Solve ``scene`` with ``method``; a VFIFE run of a scene without fixed ends takes the
+    hang-off point from the BVP solution (stated in the result's info)."""
+    if method == "bvp":
+        import bvp
+        return bvp.solve(scene, **{k: v for k, v in options.items() if k in ("tolerance",)})
+    import vfife
+    opts = {k: v for k, v in options.items() if k in ("element_length",)}
+    if scene.ends.kind != "fixed":
+        from .equivalence import fixed_ends_via_bvp
+        fixed, note = fixed_ends_via_bvp(scene)
+        res = vfife.solve(fixed, **opts)
+        res.info["ends_conversion"] = note
+        res.scene = scene.name
+        return res
+    return vfife.solve(scene, **opts)
+
+
+def cmd_solve(args) -> int:
+    from .catalog import resolve
+    scene = resolve(args.scene)
+    options = {}
+    if args.tolerance is not None:
+        options["tolerance"] = args.tolerance
+    if args.element_length is not None:
+        options["element_length"] = args.element_length
+    res = solve_scene(scene, args.method, **options)
+    out = Path(args.out) if args.out else Path("out") / scene.name / args.method
+    res.write(out)
+    if not res.converged:
+        _err(f"{args.method} did not converge on {scene.name}: {res.message}")
+        return 1
+    sm = res.summary()
+    print(f"{scene.name} [{args.method}]: {res.message} in {res.wall_time_s:.3f} s")
+    print(f"  hang-off tension {sm['hang_off_tension'] / 1e3:.2f} kN, angle "
+          f"{sm['hang_off_angle_deg']:.3f} deg, at x = {sm['hang_off_x']:.2f} m, "
+          f"y = {sm['hang_off_height']:.2f} m")
+    if sm.get("tdp_x") is not None:
+        print(f"  touchdown x = {sm['tdp_x']:.2f} m, tension {sm['tdp_tension'] / 1e3:.2f} kN")
+    print(f"  max tension {sm['max_tension'] / 1e3:.2f} kN, max moment "
+          f"{sm['max_moment'] / 1e3:.3f} kN m at s = {sm['max_moment_s']:.1f} m")
+    for w in sm.get("warnings", []) or []:
+        print(f"  warning: {w}")
+    print(f"  wrote {out}/profile.csv and summary.json")
+    return 0
+
+
+def cmd_reproduce(args) -> int:
+    names = STUDIES if args.name == "all" else (args.name,)
+    base = Path(args.out) if args.out else None
+    for name in names:
+        t0 = time.perf_counter()
+        out = (base / name if args.name == "all" else base) if base else Path("reports") / name
+        if name == "wang2014":
+            from . import wang2014
+            wang2014.run(out)
+        print(f"{name}: wrote {out}/ in {time.perf_counter() - t0:.1f} s")
+    return 0
+
+
+def cmd_bench(args) -> int:
+    from vfife.bench import format_table, run_bench
+    out = Path(args.out) if args.out else Path("reports") / "bench"
+    bench = run_bench(out)
+    print(format_table(bench))
+    print(f"wrote {out}/bench.json")
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="riser-verify", description=(
+        "Dual-method verification suite for deepwater risers (VFIFE and BVP)."))
+    sub = p.add_subparsers(dest="command", required=True)
+    s = sub.add_parser("scenes", help="list the built-in scenes")
+    s.set_defaults(func=cmd_scenes)
+    s = sub.add_parser("solve", help="solve one scene with one method")
+    s.add_argument("scene", help="built-in scene name or path to a .toml scene file")
+    s.add_argument("--method", choices=METHODS, default="bvp")
+    s.add_argument("--out", help="output directory (default out/SCENE/METHOD)")
+    s.add_argument("--tolerance", type=float, help="bvp: solve_bvp tolerance")
+    s.add_argument("--element-length", type=float, help="vfife: element length [m]")
+    s.set_defaults(func=cmd_solve)
+    s = sub.add_parser("reproduce", help="regenerate a paper reproduction report")
+    s.add_argument("name", choices=STUDIES + ("all",))
+    s.add_argument("--out", help="output directory (default reports/NAME)")
+    s.set_defaults(func=cmd_reproduce)
+    s = sub.add_parser("bench", help="VFIFE kernel and solver benchmark")
+    s.add_argument("--out", help="output directory (default reports/bench)")
+    s.set_defaults(func=cmd_bench)
+    return p
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
+    try:
+        return args.func(args)
+    except (SceneError, UnsupportedSceneError) as exc:
+        _err(str(exc))
+        return 2
+    except KeyboardInterrupt:
+        _err("interrupted")
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())
