@@ -468,6 +468,9 @@ def _profile(prob: _Problem, sol, scene: Scene) -> tuple[Profile, dict]:
                "theta": np.zeros_like(sg), "M": np.zeros_like(sg), "F": np.zeros_like(sg),
                "T": np.full_like(sg, T0), "kappa": np.zeros_like(sg)}
         c = {k: np.concatenate([pre[k], c[k]]) for k in c}
+    # joints are evaluated from both sides; drop stations closer than 1 um
+    keep = np.concatenate([[True], np.diff(c["s"]) > 1e-6])
+    c = {k: v[keep] for k, v in c.items()}
     checks["first_segment_suspended_length"] = float(Ls[0])
     if prob.form == "fixed_seabed":
         checks["grounded_length"] = float(grounded)

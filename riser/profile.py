@@ -96,7 +96,8 @@ def waves(profile: Profile, min_prominence: float | None = None) -> tuple[list[d
     [m] (default 1e-4 of the height range) are dropped as noise. Each entry is
     ``{"s", "x", "height"}`` with the vertex refined by a parabola through three samples.
     """
-    s, x, y = profile.s, profile.x, profile.y
+    keep = np.concatenate([[True], np.diff(profile.s) > 0.0])     # ignore repeated stations
+    s, x, y = profile.s[keep], profile.x[keep], profile.y[keep]
     start = 0
     if profile.tdp_s is not None:
         start = int(np.searchsorted(s, profile.tdp_s + 1e-9))
