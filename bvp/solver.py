@@ -160,12 +160,18 @@ def _build_problem(scene: Scene) -> _Problem:
         anchor = ends.anchor
         dx = ends.hang_off[0] - anchor[0]
         dy = ends.hang_off[1] - anchor[1]
+        lifted = False
         if scene.seabed is not None and anchor[1] == 0.0:
-            form = "fixed_seabed"
-            free_first = True
-            H, V0, Ls = _guess_grounded(w, L, dx, dy)
-        else:
-            form = "fixed_free"
+            try:
+                H, V0, Ls = _guess_grounded(w, L, dx, dy)
+                form = "fixed_seabed"
+                free_first = True
+            except BVPFailure:
+                # no touchdown ahead of the anchor: the line may lift off at the anchor,
+                # i.e. hang pinned there and rise from the seabed (checked after solving)
+                lifted = True
+        if form != "fixed_seabed":
+            form = "fixed_lifted" if lifted else "fixed_free"
             H, V0, Ls = _guess_free_hanging(w, L, dx, dy)
 
     ox = anchor[0] + (L[0] - Ls[0] if form == "fixed_seabed" else 0.0)
@@ -459,8 +465,15 @@ def _profile(prob: _Problem, sol, scene: Scene) -> tuple[Profile, dict]:
     c = {k: np.concatenate(v) for k, v in cols.items()}
     tdp_s = None
     checks: dict = {}
-    if prob.form in ("tdp_tension", "hang_off_angle", "fixed_seabed"):
+    if prob.form in ("tdp_tension", "hang_off_angle", "fixed_seabed", "fixed_lifted"):
         tdp_s = grounded
+    if prob.form == "fixed_lifted":
+        checks["lifted_off_anchor"] = True
+        if c["theta"][0] < -1e-6:
+            raise BVPFailure(
+                "the line is too short to reach the seabed ahead of the anchor and would "
+                f"leave the anchor downwards (angle {math.degrees(c['theta'][0]):.2f} deg): "
+                "no touchdown in the first segment")
     if prob.form == "fixed_seabed" and grounded > 0.0:
         sg = np.linspace(0.0, grounded, max(2, int(math.ceil(grounded / 1.0)) + 1))[:-1]
         T0 = c["T"][0]
