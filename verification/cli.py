@@ -14,7 +14,7 @@ from pathlib import Path
 from riser.errors import SceneError, UnsupportedSceneError
 
 METHODS = ("bvp", "vfife")
-STUDIES = ("wang2014",)
+STUDIES = ("wang2014", "yu2021")
 
 
 def _err(msg: str) -> None:
@@ -86,7 +86,37 @@ def cmd_reproduce(args) -> int:
         if name == "wang2014":
             from . import wang2014
             wang2014.run(out)
+        elif name == "yu2021":
+            from . import yu2021
+            yu2021.run(out)
         print(f"{name}: wrote {out}/ in {time.perf_counter() - t0:.1f} s")
+    return 0
+
+
+def cmd_compare(args) -> int:
+    from . import compare
+    from .catalog import resolve
+    scene = resolve(args.scene)
+    comp = compare.compare(scene, element_length=args.element_length,
+                           sensitivity=not args.no_sensitivity)
+    out = Path(args.out) if args.out else Path("out") / scene.name / "compare"
+    compare.write(comp, out)
+    for r in comp.rows:
+        flag = "ok  " if r["pass"] else "FAIL"
+        rel = f"{100 * r['rel_diff']:+.4f} %" if r["rel_diff"] is not None else ""
+        print(f"  {flag} {r['quantity']:<22} |diff| {r['abs_diff'] if r['abs_diff'] is not None else float('nan'):.6g} {rel}")
+    print(f"{scene.name}: {'PASS' if comp.passed else 'FAIL'}; wrote {out}/agreement.csv, report.md")
+    return 0 if comp.passed else 1
+
+
+def cmd_regress(args) -> int:
+    from . import regress
+    problems = regress.run(update=args.update, names=args.scenes or None)
+    for line in problems:
+        print(line)
+    if problems:
+        print(f"{len(problems)} regression difference(s); rerun with --update if intended")
+        return 1
     return 0
 
 
@@ -116,6 +146,17 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("name", choices=STUDIES + ("all",))
     s.add_argument("--out", help="output directory (default reports/NAME)")
     s.set_defaults(func=cmd_reproduce)
+    s = sub.add_parser("compare", help="solve a scene with both methods and compare them")
+    s.add_argument("scene", help="built-in scene name or path to a .toml scene file")
+    s.add_argument("--out", help="output directory (default out/SCENE/compare)")
+    s.add_argument("--element-length", type=float, help="vfife element length [m]")
+    s.add_argument("--no-sensitivity", action="store_true",
+                   help="skip the VFIFE run with 10x seabed stiffness and EA")
+    s.set_defaults(func=cmd_compare)
+    s = sub.add_parser("regress", help="compare every built-in scene with its stored summary")
+    s.add_argument("scenes", nargs="*", help="only these built-in scenes")
+    s.add_argument("--update", action="store_true", help="rewrite the stored summaries")
+    s.set_defaults(func=cmd_regress)
     s = sub.add_parser("bench", help="VFIFE kernel and solver benchmark")
     s.add_argument("--out", help="output directory (default reports/bench)")
     s.set_defaults(func=cmd_bench)
