@@ -190,7 +190,8 @@ def compare(scene: Scene, *, element_length: float | None = None, sensitivity: b
         vf_scene, s_shift = scene, 0.0
     else:
         vf_scene = fixed_ends_scene(scene, (sb["hang_off_x"], sb["hang_off_height"]),
-                                    sb["first_segment_suspended_length"], seabed_length)
+                                    sb["first_segment_suspended_length"], seabed_length,
+                                    element_length)
         s_shift = seabed_length
         notes.append(
             f"The scene's `{scene.ends.kind}` ends were converted for VFIFE: hang-off fixed at the "
