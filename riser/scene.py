@@ -241,7 +241,7 @@ def parse_scene(text: str, source: str = "<scene>") -> Scene:
     """Parse TOML text into a validated :class:`Scene`."""
     try:
         data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
+    except ValueError as exc:   # TOMLDecodeError, or int() refusing a > 4300-digit integer
         raise SceneError(source, "", f"not valid TOML ({exc})") from None
     return scene_from_dict(data, source)
 
@@ -374,7 +374,7 @@ def _read_line_type(t: Table, name: str) -> LineType:
 def _read_segment(t: Table, line_types: dict[str, LineType]) -> Segment:
     lt = t.string("line_type")
     if lt not in line_types:
-        raise t.error("line_type", f"unknown line type {lt!r} (defined: {', '.join(line_types)})")
+        raise t.error("line_type", f"unknown line type {lt!r} (defined: {', '.join(map(repr, line_types))})")
     L = LIMITS["line_load"]
     seg = Segment(
         line_type=lt,
@@ -475,6 +475,12 @@ def _read_vfife(t: Table) -> dict:
                                           unit="m"),
         "rotational_inertia_scale": t.number("rotational_inertia_scale", 4.0, ge=1.0, le=1.0e6),
         "seabed_length": t.number("seabed_length", None, ge=0.0, le=LIMITS["length"], unit="m"),
+        # dynamics: factor on the physical rotational inertia (1 = physical; the VFIFE
+        # default 4 makes the step axial-limited, see vfife/dynamics.py)
+        "rotational_inertia_scale_dynamics": t.number("rotational_inertia_scale_dynamics", 4.0,
+                                                      gt=0.0, le=1.0e6),
+        # dynamics: fixed time step [s] instead of safety x critical step (expert use)
+        "time_step": t.number("time_step", None, gt=0.0, le=10.0, unit="s"),
     }
     t.finish()
     return {k: v for k, v in out.items() if v is not None}

@@ -43,6 +43,10 @@ class Table:
 
     # ------------------------------------------------------------------ helpers
     def key(self, name: str) -> str:
+        if not name:
+            return self.path
+        if not name.isprintable():
+            name = repr(name)          # keep the error on one line (e.g. a key with a newline)
         return f"{self.path}.{name}" if self.path else name
 
     def error(self, name: str, message: str) -> SceneError:
@@ -157,7 +161,10 @@ def check_number(value: Any, error, name: str, *, gt: float | None = None, ge: f
     u = f" {unit}" if unit else ""
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise error(name, f"must be a number, got {_type_name(value)}")
-    value = float(value)
+    try:
+        value = float(value)
+    except OverflowError:
+        raise error(name, "must be a finite number, got an integer too large for a float") from None
     if not math.isfinite(value):
         raise error(name, f"must be a finite number, got {value}")
     if gt is not None and not value > gt:

@@ -1,0 +1,152 @@
+"""VFIFE benchmark: kernel cost per element-step, compile time, Wang baseline statics and
+dynamics at 1 m elements. ``run_bench(out_dir)`` writes ``bench.json``;
+``format_table(bench)`` renders it for stdout.
+
+Kernel cost is measured on the Wang baseline (fixed ends, 1 m elements, ~2,900
+elements) from its static state, single thread, compilation excluded:
+- ``planar``: planar kernel, no current (weight, bending, seabed);
+- ``planar_drag``: planar kernel with an in-plane current (drag kernel on);
+- ``spatial``: 3D kernel on the same planar scene without current;
+- ``spatial_drag``: 3D kernel with an out-of-plane current (heading 90 deg, 1 m/s).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import platform
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+from riser.scene import Current, Dynamics, TopMotion, load_scene
+
+from .ends import fixed_ends_scene
+from .model import Model
+from .solver import solve, warm_up
+from .timestep import choose_step, critical_steps
+
+WANG_FILE = Path(__file__).resolve().parents[1] / "verification" / "scenes" / "wang2014-baseline.toml"
+WANG_TOP = (1625.0, 1586.3)      # the BVP's hang-off point of the baseline
+
+
+def wang_fixed(seabed_length: float = 300.0):
+    return fixed_ends_scene(load_scene(WANG_FILE), WANG_TOP, seabed_length)
+
+
+def _cold_compile_s() -> float:
+    """Compile time of all kernels in a fresh process with an empty Numba cache [s]."""
+    code = ("import time; t=time.perf_counter(); from vfife.solver import warm_up; warm_up(); "
+            "print(time.perf_counter()-t)")
+    with tempfile.TemporaryDirectory() as tmp:
+        env = dict(os.environ, NUMBA_CACHE_DIR=tmp)
+        root = str(Path(__file__).resolve().parents[1])
+        env["PYTHONPATH"] = root + os.pathsep + env.get("PYTHONPATH", "")
+        out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True,
+                             text=True, timeout=600, cwd=root)
+    try:
+        return float(out.stdout.strip().splitlines()[-1])
+    except (IndexError, ValueError):
+        return float("nan")
+
+
+def _kernel_ns(scene, static: Model, planar: bool, nsteps: int = 4000) -> float:
+    m = Model(scene, static.mesh, rot_scale=1.0, added_mass=True, planar=planar)
+    m.X[:] = static.X
+    m.D[:] = static.D
+    steps = critical_steps(static.mesh, rot_scale=1.0, tension=1e6, added_mass=True)
+    dt, _ = choose_step(steps, 0.8)
+    m.run(10, dt, 0.0)
+    best = float("inf")
+    for _ in range(3):
+        t0 = time.perf_counter()
+        m.run(nsteps, dt, 0.0)
+        best = min(best, time.perf_counter() - t0)
+    return best / (nsteps * static.mesh.ne) * 1e9
+
+
+def run_bench(out_dir, *, duration: float = 30.0) -> dict:
+    """Run the benchmark and write ``out_dir/bench.json``; returns the dict."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    cold = _cold_compile_s()
+    t0 = time.perf_counter()
+    warm_up()
+    cache_load = time.perf_counter() - t0
+
+    base = wang_fixed()
+    stat = solve(base, element_length=1.0)
+    static_model = stat.model
+    planar_cur = base.replace(current=Current(heights=(0.0,), speeds=(1.0,), heading_deg=0.0))
+    spatial_cur = base.replace(current=Current(heights=(0.0,), speeds=(1.0,), heading_deg=90.0))
+    ns = {
+        "planar": _kernel_ns(base, static_model, True),
+        "planar_drag": _kernel_ns(planar_cur, static_model, True),
+        "spatial": _kernel_ns(base, static_model, False),
+        "spatial_drag": _kernel_ns(spatial_cur, static_model, False),
+    }
+    dyn_scene = base.replace(dynamics=Dynamics(duration=duration, output_interval=1.0,
+                                               top_motion=TopMotion(axis="y", amplitude=1.5,
+                                                                    period=10.0)))
+    dyn = solve(dyn_scene, element_length=1.0)
+    bench = {
+        "machine": {"python": platform.python_version(), "processor": platform.processor()
+                    or platform.machine(), "threads": 1},
+        "kernel_ns_per_element_step": {"planar": ns["planar"],
+                                       "spatial_drag": ns["spatial_drag"],
+                                       "planar_drag": ns["planar_drag"],
+                                       "spatial": ns["spatial"]},
+        "compile_s": cold,
+        "cache_load_s": cache_load,
+        "static_wall_s": stat.wall_time_s,
+        "static_elements": stat.info["elements"],
+        "static_steps": stat.info["steps"],
+        "static_residual": stat.info["residual"],
+        "static_hang_off_tension": float(stat.profile.tension[-1]),
+        "static_max_moment": float(np.max(stat.profile.moment)),
+        "realtime_factor_1m": dyn.info.get("realtime_factor", float("nan")),
+        "dynamics": {"duration_s": duration, "time_step": dyn.info.get("dynamic_time_step"),
+                     "steps": dyn.info.get("dynamic_steps"),
+                     "wall_s": dyn.info.get("dynamic_wall_s"), "converged": dyn.converged,
+                     "motion": "heave 1.5 m, 10 s, Wang baseline, 1 m elements"},
+        "effect_costs": {
+            "drag_on_over_off_planar": ns["planar_drag"] / ns["planar"],
+            "drag_on_over_off_spatial": ns["spatial_drag"] / ns["spatial"],
+            "spatial_over_planar": ns["spatial"] / ns["planar"],
+        },
+        "targets": {"kernel_ns_planar": 6.0, "kernel_ns_spatial_drag": 15.0,
+                    "static_wall_s": 2.0, "realtime_factor_1m": 10.0},
+    }
+    (out / "bench.json").write_text(json.dumps(bench, indent=2) + "\n")
+    return bench
+
+
+def format_table(bench: dict) -> str:
+    """Readable table of a bench dict (value, target, pass/fail)."""
+    k = bench["kernel_ns_per_element_step"]
+    t = bench["targets"]
+    rows = [
+        ("kernel planar [ns/element-step]", k["planar"], f"<= {t['kernel_ns_planar']:g}",
+         k["planar"] <= t["kernel_ns_planar"]),
+        ("kernel 3D + drag [ns/element-step]", k["spatial_drag"],
+         f"<= {t['kernel_ns_spatial_drag']:g}", k["spatial_drag"] <= t["kernel_ns_spatial_drag"]),
+        ("kernel planar + drag", k["planar_drag"], "", None),
+        ("kernel 3D, no drag", k["spatial"], "", None),
+        ("statics Wang 1 m [s]", bench["static_wall_s"], f"< {t['static_wall_s']:g}",
+         bench["static_wall_s"] < t["static_wall_s"]),
+        ("dynamics 1 m [x real time]", bench["realtime_factor_1m"],
+         f">= {t['realtime_factor_1m']:g}", bench["realtime_factor_1m"] >= t["realtime_factor_1m"]),
+        ("compile, cold cache [s]", bench["compile_s"], "", None),
+        ("cache load [s]", bench["cache_load_s"], "", None),
+    ]
+    lines = [f"{'quantity':<38} {'value':>10}  {'target':<8} ok"]
+    for name, v, tgt, ok in rows:
+        lines.append(f"{name:<38} {v:>10.3f}  {tgt:<8} {'' if ok is None else ('yes' if ok else 'NO')}")
+    e = bench["effect_costs"]
+    lines.append(f"drag on/off: planar x{e['drag_on_over_off_planar']:.2f}, 3D "
+                 f"x{e['drag_on_over_off_spatial']:.2f}; 3D/planar x{e['spatial_over_planar']:.2f}")
+    return "\n".join(lines)

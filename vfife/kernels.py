@@ -1,0 +1,471 @@
+"""Numba kernels of the VFIFE riser model, on plain arrays.
+
+Model (see ``vfife/__init__.py`` for the full statement)
+--------------------------------------------------------
+Nodes i = 0..n-1 carry a position ``X[i]`` [m], a velocity ``V[i]`` [m/s], a unit
+*director* ``D[i]`` (the pipe axis at the node, rotated by the node's rotational DOF) and
+an angular velocity ``W[i]`` [rad/s] perpendicular to ``D[i]``. Elements e = 0..n-2 join
+nodes e (end a) and e+1 (end b) and are massless space beams.
+
+Per element and step the rigid-body motion is removed by measuring everything against
+the current chord ``e = (X[b]-X[a])/l`` (fictitious reverse translation and rotation):
+the pure deformations are the elongation ``l - l0`` and the bending rotations of the end
+directors relative to the chord, ``phi_a = e x D[a]`` and ``phi_b = e x D[b]`` (vectors
+perpendicular to the chord carrying both bending planes). The element energy is
+
+    U = EA/(2 l0) (l - l0)^2 + EI/l0 (2|phi_a|^2 + 2 phi_a.phi_b + 2|phi_b|^2),
+
+i.e. the cubic beam's end moments M_a = EI/l0 (4 phi_a + 2 phi_b), M_b = EI/l0 (2 phi_a
++ 4 phi_b), and the nodal forces and moments are its exact gradient, so the internal
+forces are conservative and vanish under any rigid-body motion. The shear follows from
+element equilibrium (the transverse part of the force pair). Torsion: for an isotropic
+round pipe without distributed torque and with moment-free (pinned) ends the torsional
+moment is zero everywhere (Kirchhoff), so the twist DOF is not integrated (GJ unused).
+
+Integration: explicit central differences with mass-proportional damping ``c`` [1/s]:
+``v+ = ((1 - c dt/2) v + dt a) / (1 + c dt/2)``, ``x+ = x + dt v+``; directors are
+rotated by ``dt W`` and renormalised. The added mass acts normal to the director:
+``a = F/(m + ma) + (d.F) d (1/m - 1/(m + ma))``.
+
+Array layout is component-major (vectorises: 8x faster than (n, 3)): X, V, D, W are
+(3, n) [(2, n) positions and (n,) rotation rate in the planar kernels], element force
+arrays (3, ne), element and node scalars (ne,) and (n,). The planar
+kernels (``*_2d``) run on the first two rows of the same arrays.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+# No 'nnan'/'ninf' fast-math flags: the blow-up checks rely on NaN comparisons.
+_FM = {"contract", "arcp", "reassoc", "nsz"}
+_JIT = dict(cache=True, error_model="numpy", fastmath=_FM, nogil=True)
+
+
+# ============================================================================ 3D
+@njit(**_JIT)
+def element_pass(x, y, z, dx_, dy_, dz_, l0, kax, kb, f0, f1, f2, a0, a1, a2, b0, b1, b2):
+    """Internal forces of every element (pass 1, 3D).
+
+    x, y, z, dx_, dy_, dz_ : (n,) node positions [m] and unit directors, one 1D array per
+        component (separate 1D rows let LLVM vectorise the loop: 2.9 vs 18.7 ns).
+    l0 : (ne,) unstretched lengths [m]; kax = EA/l0 [N/m]; kb = EI/l0 [N m].
+    f0, f1, f2 : (ne,) out: force of element e on its node a [N] (node b receives -f).
+    a0..a2, b0..b2 : (ne,) out: moments of element e on nodes a and b [N m].
+    """
+    ne = l0.shape[0]
+    for e in range(ne):
+        dx = x[e + 1] - x[e]
+        dy = y[e + 1] - y[e]
+        dz = z[e + 1] - z[e]
+        l = math.sqrt(dx * dx + dy * dy + dz * dz)
+        il = 1.0 / l
+        ex = dx * il
+        ey = dy * il
+        ez = dz * il
+        N = kax[e] * (l - l0[e])
+        ax = dx_[e]
+        ay = dy_[e]
+        az = dz_[e]
+        bx = dx_[e + 1]
+        by = dy_[e + 1]
+        bz = dz_[e + 1]
+        # bending rotations of the end directors relative to the chord: phi = e x d
+        pax = ey * az - ez * ay
+        pay = ez * ax - ex * az
+        paz = ex * ay - ey * ax
+        pbx = ey * bz - ez * by
+        pby = ez * bx - ex * bz
+        pbz = ex * by - ey * bx
+        k = kb[e]
+        max_ = k * (4.0 * pax + 2.0 * pbx)
+        may = k * (4.0 * pay + 2.0 * pby)
+        maz = k * (4.0 * paz + 2.0 * pbz)
+        mbx = k * (2.0 * pax + 4.0 * pbx)
+        mby = k * (2.0 * pay + 4.0 * pby)
+        mbz = k * (2.0 * paz + 4.0 * pbz)
+        # G = d_a x M_a + d_b x M_b; its part normal to the chord / l is the shear pair
+        gx = ay * maz - az * may + by * mbz - bz * mby
+        gy = az * max_ - ax * maz + bz * mbx - bx * mbz
+        gz = ax * may - ay * max_ + bx * mby - by * mbx
+        eg = ex * gx + ey * gy + ez * gz
+        f0[e] = (gx - eg * ex) * il + N * ex
+        f1[e] = (gy - eg * ey) * il + N * ey
+        f2[e] = (gz - eg * ez) * il + N * ez
+        # nodal moments m = -((e.d) M - (M.d) e)
+        eda = ex * ax + ey * ay + ez * az
+        mda = max_ * ax + may * ay + maz * az
+        a0[e] = mda * ex - eda * max_
+        a1[e] = mda * ey - eda * may
+        a2[e] = mda * ez - eda * maz
+        edb = ex * bx + ey * by + ez * bz
+        mdb = mbx * bx + mby * by + mbz * bz
+        b0[e] = mdb * ex - edb * mbx
+        b1[e] = mdb * ey - edb * mby
+        b2[e] = mdb * ez - edb * mbz
+
+
+@njit(**_JIT)
+def gather(F, MA, MB, wload, Fn, Mn):
+    """Nodal resultants (pass 2a): Fn (k, n) = element forces + weight (-wload [N] along y,
+    row 1), Mn = element moments; F, MA, MB (k, ne); k = 3 (3D) or 2 (planar forces)."""
+    k = F.shape[0]
+    ne = F.shape[1]
+    for j in range(k):
+        Fn[j, 0] = F[j, 0]
+        for i in range(1, ne):
+            Fn[j, i] = F[j, i] - F[j, i - 1]
+        Fn[j, ne] = -F[j, ne - 1]
+    for i in range(ne + 1):
+        Fn[1, i] -= wload[i]
+    for j in range(MA.shape[0]):
+        Mn[j, 0] = MA[j, 0]
+        for i in range(1, ne):
+            Mn[j, i] = MA[j, i] + MB[j, i - 1]
+        Mn[j, ne] = MB[j, ne - 1]
+
+
+@njit(**_JIT)
+def current_speed(y, heights, speeds):
+    """Signed current speed [m/s] at height y [m]: piecewise linear, constant outside."""
+    nh = heights.shape[0]
+    if nh == 1 or y <= heights[0]:
+        return speeds[0]
+    if y >= heights[nh - 1]:
+        return speeds[nh - 1]
+    j = 1
+    while heights[j] < y:
+        j += 1
+    t = (y - heights[j - 1]) / (heights[j] - heights[j - 1])
+    return speeds[j - 1] + t * (speeds[j] - speeds[j - 1])
+
+
+@njit(**_JIT)
+def seabed_forces(X, V, trib, kseabed, cseabed, mu, vfric, Fn):
+    """Add the seabed reaction to Fn (k, n) for nodes below y = 0 (works for k = 2, 3).
+
+    Penalty spring kseabed [N/m2] x tributary length x penetration, contact damping
+    cseabed (n,) [N s/m] on the vertical speed, Coulomb friction mu x normal spring force
+    against the horizontal velocity, regularised by vfric [m/s] (mu = 0: no friction).
+    """
+    k = X.shape[0]
+    n = X.shape[1]
+    for i in range(n):
+        if X[1, i] < 0.0:
+            fn = -kseabed * trib[i] * X[1, i]
+            Fn[1, i] += fn - cseabed[i] * V[1, i]
+            if mu > 0.0:
+                vz = V[2, i] if k == 3 else 0.0
+                vh = math.sqrt(V[0, i] * V[0, i] + vz * vz + vfric * vfric)
+                Fn[0, i] -= mu * fn * V[0, i] / vh
+                if k == 3:
+                    Fn[2, i] -= mu * fn * vz / vh
+
+
+@njit(**_JIT)
+def drag_forces(X, V, D, cdn, cdt, heights, speeds, cdir, Fn):
+    """Add Morison drag on the velocity relative to the current to Fn (3, n).
+
+    u = U(y) cdir - v; normal part u_n = u - (u.d) d, tangential u_t = u.d;
+    f = cdn |u_n| u_n + cdt |u_t| u_t d with cdn, cdt (n,) = 0.5 rho D C_D x tributary
+    length [kg/m] (cdt uses the perimeter, pi D).
+    """
+    n = X.shape[1]
+    for i in range(n):
+        u = current_speed(X[1, i], heights, speeds)
+        dx = D[0, i]
+        dy = D[1, i]
+        dz = D[2, i]
+        ux = u * cdir[0] - V[0, i]
+        uy = u * cdir[1] - V[1, i]
+        uz = u * cdir[2] - V[2, i]
+        ut = ux * dx + uy * dy + uz * dz
+        unx = ux - ut * dx
+        uny = uy - ut * dy
+        unz = uz - ut * dz
+        un = math.sqrt(unx * unx + uny * uny + unz * unz)
+        ft = cdt[i] * abs(ut) * ut
+        Fn[0, i] += cdn[i] * un * unx + ft * dx
+        Fn[1, i] += cdn[i] * un * uny + ft * dy
+        Fn[2, i] += cdn[i] * un * unz + ft * dz
+
+
+@njit(**_JIT)
+def integrate_translation(x, y, z, vx, vy, vz, dx, dy, dz, fx, fy, fz, mass, im, imd, dt, c):
+    """Central-difference update of the translations of nodes 1..n-2 (3D; pass 2b) with
+    mass-proportional damping c [1/s]; all arguments are (n,) rows.
+
+    im = 1/(m + ma), imd = 1/m - im [1/kg]: the added mass ma acts normal to the
+    director d. The ends are prescribed by the caller.
+    Returns (max squared free-node force [N2], 2 x kinetic energy [J]).
+    """
+    n = x.shape[0]
+    c1 = 1.0 - 0.5 * c * dt
+    c2 = 1.0 / (1.0 + 0.5 * c * dt)
+    rmax = 0.0
+    ke = 0.0
+    for i in range(1, n - 1):
+        gx = fx[i]
+        gy = fy[i]
+        gz = fz[i]
+        r = gx * gx + gy * gy + gz * gz
+        rmax = r if r > rmax else rmax
+        fd = (gx * dx[i] + gy * dy[i] + gz * dz[i]) * imd[i]
+        ux = (c1 * vx[i] + dt * (gx * im[i] + fd * dx[i])) * c2
+        uy = (c1 * vy[i] + dt * (gy * im[i] + fd * dy[i])) * c2
+        uz = (c1 * vz[i] + dt * (gz * im[i] + fd * dz[i])) * c2
+        vx[i] = ux
+        vy[i] = uy
+        vz[i] = uz
+        x[i] += dt * ux
+        y[i] += dt * uy
+        z[i] += dt * uz
+        ke += mass[i] * (ux * ux + uy * uy + uz * uz)
+    return rmax, ke
+
+
+@njit(**_JIT)
+def integrate_rotation(dx, dy, dz, wx, wy, wz, mx, my, mz, jinv, dt, c):
+    """Rotation update of every node (pinned ends rotate freely), 3D; (n,) rows.
+
+    The moment component along the director is dropped (no torsion, see module doc);
+    the director is turned by dt w x d and renormalised, w kept normal to it.
+    jinv = 1/J [1/(kg m2)]. Returns (max squared moment [N2 m2], 2 x rotational KE [J]).
+    """
+    n = dx.shape[0]
+    c1 = 1.0 - 0.5 * c * dt
+    c2 = 1.0 / (1.0 + 0.5 * c * dt)
+    mmax = 0.0
+    ke = 0.0
+    for i in range(n):
+        ax = dx[i]
+        ay = dy[i]
+        az = dz[i]
+        px = mx[i]
+        py = my[i]
+        pz = mz[i]
+        md = px * ax + py * ay + pz * az
+        px -= md * ax
+        py -= md * ay
+        pz -= md * az
+        r = px * px + py * py + pz * pz
+        mmax = r if r > mmax else mmax
+        qx = (c1 * wx[i] + dt * jinv[i] * px) * c2
+        qy = (c1 * wy[i] + dt * jinv[i] * py) * c2
+        qz = (c1 * wz[i] + dt * jinv[i] * pz) * c2
+        nx = ax + dt * (qy * az - qz * ay)
+        ny = ay + dt * (qz * ax - qx * az)
+        nz = az + dt * (qx * ay - qy * ax)
+        inv = 1.5 - 0.5 * (nx * nx + ny * ny + nz * nz)   # Newton step to |d| = 1
+        nx *= inv
+        ny *= inv
+        nz *= inv
+        wd = qx * nx + qy * ny + qz * nz
+        wx[i] = qx - wd * nx
+        wy[i] = qy - wd * ny
+        wz[i] = qz - wd * nz
+        dx[i] = nx
+        dy[i] = ny
+        dz[i] = nz
+        ke += (qx * qx + qy * qy + qz * qz) / jinv[i]
+    return mmax, ke
+
+
+# ============================================================================ planar
+@njit(**_JIT)
+def element_pass_2d(x, y, dx_, dy_, l0, kax, kb, f0, f1, a0, b0):
+    """Planar version of :func:`element_pass`: rows x, y, dx_, dy_ (n,); forces f0, f1
+    (ne,); a0, b0 (ne,) moments about +z on nodes a and b [N m]."""
+    ne = l0.shape[0]
+    for e in range(ne):
+        dx = x[e + 1] - x[e]
+        dy = y[e + 1] - y[e]
+        l = math.sqrt(dx * dx + dy * dy)
+        il = 1.0 / l
+        ex = dx * il
+        ey = dy * il
+        N = kax[e] * (l - l0[e])
+        ax = dx_[e]
+        ay = dy_[e]
+        bx = dx_[e + 1]
+        by = dy_[e + 1]
+        pa = ex * ay - ey * ax           # phi_a (z component)
+        pb = ex * by - ey * bx
+        k = kb[e]
+        ma = k * (4.0 * pa + 2.0 * pb)
+        mb = k * (2.0 * pa + 4.0 * pb)
+        gx = ay * ma + by * mb           # G = d x (M z)
+        gy = -ax * ma - bx * mb
+        eg = ex * gx + ey * gy
+        f0[e] = (gx - eg * ex) * il + N * ex
+        f1[e] = (gy - eg * ey) * il + N * ey
+        a0[e] = -(ex * ax + ey * ay) * ma
+        b0[e] = -(ex * bx + ey * by) * mb
+
+
+@njit(**_JIT)
+def drag_forces_2d(X, V, D, cdn, cdt, heights, speeds, cdir, Fn):
+    """Planar version of :func:`drag_forces` (cdir (2,) in plane)."""
+    n = X.shape[1]
+    for i in range(n):
+        u = current_speed(X[1, i], heights, speeds)
+        dx = D[0, i]
+        dy = D[1, i]
+        ux = u * cdir[0] - V[0, i]
+        uy = u * cdir[1] - V[1, i]
+        ut = ux * dx + uy * dy
+        unx = ux - ut * dx
+        uny = uy - ut * dy
+        un = math.sqrt(unx * unx + uny * uny)
+        ft = cdt[i] * abs(ut) * ut
+        Fn[0, i] += cdn[i] * un * unx + ft * dx
+        Fn[1, i] += cdn[i] * un * uny + ft * dy
+
+
+@njit(**_JIT)
+def integrate_translation_2d(x, y, vx, vy, dx, dy, fx, fy, mass, im, imd, dt, c):
+    """Planar version of :func:`integrate_translation`."""
+    n = x.shape[0]
+    c1 = 1.0 - 0.5 * c * dt
+    c2 = 1.0 / (1.0 + 0.5 * c * dt)
+    rmax = 0.0
+    ke = 0.0
+    for i in range(1, n - 1):
+        gx = fx[i]
+        gy = fy[i]
+        r = gx * gx + gy * gy
+        rmax = r if r > rmax else rmax
+        fd = (gx * dx[i] + gy * dy[i]) * imd[i]
+        ux = (c1 * vx[i] + dt * (gx * im[i] + fd * dx[i])) * c2
+        uy = (c1 * vy[i] + dt * (gy * im[i] + fd * dy[i])) * c2
+        vx[i] = ux
+        vy[i] = uy
+        x[i] += dt * ux
+        y[i] += dt * uy
+        ke += mass[i] * (ux * ux + uy * uy)
+    return rmax, ke
+
+
+@njit(**_JIT)
+def integrate_rotation_2d(dx, dy, w, m, jinv, dt, c):
+    """Planar version of :func:`integrate_rotation`: w, m (n,) rate and moment about z."""
+    n = dx.shape[0]
+    c1 = 1.0 - 0.5 * c * dt
+    c2 = 1.0 / (1.0 + 0.5 * c * dt)
+    mmax = 0.0
+    ke = 0.0
+    for i in range(n):
+        mi = m[i]
+        r = mi * mi
+        mmax = r if r > mmax else mmax
+        q = (c1 * w[i] + dt * jinv[i] * mi) * c2
+        w[i] = q
+        ax = dx[i]
+        ay = dy[i]
+        nx = ax - dt * q * ay
+        ny = ay + dt * q * ax
+        inv = 1.5 - 0.5 * (nx * nx + ny * ny)   # Newton step to |d| = 1 (|dt w| << 1)
+        dx[i] = nx * inv
+        dy[i] = ny * inv
+        ke += q * q / jinv[i]
+    return mmax, ke
+
+
+# ============================================================================ driver
+@njit(**_JIT)
+def run(nsteps, planar, X, V, D, W, F, MA, MB, Fn, Mn, l0, kax, kb, mass, im, imd, jinv,
+        wload, trib, cdn, cdt, heights, speeds, cdir, use_drag, kseabed, cseabed, mu, vfric,
+        use_seabed, dt, c, top0, top_axis, top_disp, tol_f, tol_m, vmax):
+    """Advance up to ``nsteps`` explicit steps.
+
+    jinv : (n,) inverse rotational inertia [1/(kg m2)].
+    planar : use the planar kernels on rows 0-1 of X, V, D (z untouched) and W[2] as the
+        rotation rate; F (2, ne), MA, MB (1, ne), Fn (2, n), Mn (1, n) then.
+    top0 (3,) hang-off position at zero displacement; top_axis (3,) unit axis; top_disp
+    (nsteps + 1,) hang-off displacement [m] at the end of each step (entry 0: at the
+    start). The anchor (node 0) keeps its position.
+    Stops early when the force residual < tol_f and the moment residual < tol_m (negative
+    tolerances: never), or on a blow-up (NaN, or a speed above vmax [m/s]).
+    Returns (steps done, force residual [N], moment residual [N m], kinetic energy [J],
+    status: 0 all steps done, 1 converged, 2 blow-up).
+    """
+    n = X.shape[1]
+    res = 0.0
+    mres = 0.0
+    ke = 0.0
+    Wz = W[2]
+    for k in range(nsteps):
+        if planar:
+            element_pass_2d(X[0], X[1], D[0], D[1], l0, kax, kb, F[0], F[1], MA[0], MB[0])
+            gather(F, MA, MB, wload, Fn, Mn)
+            if use_seabed:
+                seabed_forces(X[:2], V[:2], trib, kseabed, cseabed, mu, vfric, Fn)
+            if use_drag:
+                drag_forces_2d(X, V, D, cdn, cdt, heights, speeds, cdir, Fn)
+            r2, k1 = integrate_translation_2d(X[0], X[1], V[0], V[1], D[0], D[1], Fn[0], Fn[1],
+                                              mass, im, imd, dt, c)
+            m2, k2 = integrate_rotation_2d(D[0], D[1], Wz, Mn[0], jinv, dt, c)
+        else:
+            element_pass(X[0], X[1], X[2], D[0], D[1], D[2], l0, kax, kb, F[0], F[1], F[2],
+                         MA[0], MA[1], MA[2], MB[0], MB[1], MB[2])
+            gather(F, MA, MB, wload, Fn, Mn)
+            if use_seabed:
+                seabed_forces(X, V, trib, kseabed, cseabed, mu, vfric, Fn)
+            if use_drag:
+                drag_forces(X, V, D, cdn, cdt, heights, speeds, cdir, Fn)
+            r2, k1 = integrate_translation(X[0], X[1], X[2], V[0], V[1], V[2], D[0], D[1], D[2],
+                                           Fn[0], Fn[1], Fn[2], mass, im, imd, dt, c)
+            m2, k2 = integrate_rotation(D[0], D[1], D[2], W[0], W[1], W[2], Mn[0], Mn[1],
+                                        Mn[2], jinv, dt, c)
+        res = math.sqrt(r2)
+        mres = math.sqrt(m2)
+        ke = 0.5 * (k1 + k2)
+        d1 = top_disp[k + 1]
+        vt = (d1 - top_disp[k]) / dt
+        for j in range(3):
+            X[j, n - 1] = top0[j] + d1 * top_axis[j]
+            V[j, n - 1] = vt * top_axis[j]
+        if not (res < 1e300 and ke < 1e300):
+            return k + 1, res, mres, ke, 2
+        if res < tol_f and mres < tol_m:
+            return k + 1, res, mres, ke, 1
+        if (k & 255) == 0:
+            for i in range(n):
+                vv = V[0, i] * V[0, i] + V[1, i] * V[1, i] + V[2, i] * V[2, i]
+                if not (vv <= vmax * vmax):
+                    return k + 1, res, mres, ke, 2
+    return nsteps, res, mres, ke, 0
+
+
+@njit(**_JIT)
+def element_state(X, D, l0, kax, kb):
+    """Element results for output (3D formulas, valid for planar states with z = 0):
+    axial force N [N] (effective tension), end bending-moment vectors Ma, Mb (3, ne)
+    [N m], shear magnitude Q [N] and chord length l [m] (ne,)."""
+    ne = l0.shape[0]
+    N = np.empty(ne)
+    Q = np.empty(ne)
+    L = np.empty(ne)
+    Ma = np.empty((3, ne))
+    Mb = np.empty((3, ne))
+    for e in range(ne):
+        d = X[:, e + 1] - X[:, e]
+        l = math.sqrt(d[0] ** 2 + d[1] ** 2 + d[2] ** 2)
+        ev = d / l
+        a = D[:, e]
+        b = D[:, e + 1]
+        pa = np.cross(ev, a)
+        pb = np.cross(ev, b)
+        ma = kb[e] * (4.0 * pa + 2.0 * pb)
+        mb = kb[e] * (2.0 * pa + 4.0 * pb)
+        g = np.cross(a, ma) + np.cross(b, mb)
+        gt = g - np.dot(ev, g) * ev
+        N[e] = kax[e] * (l - l0[e])
+        Q[e] = math.sqrt(gt[0] ** 2 + gt[1] ** 2 + gt[2] ** 2) / l
+        L[e] = l
+        Ma[:, e] = ma
+        Mb[:, e] = mb
+    return N, Ma, Mb, Q, L

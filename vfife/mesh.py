@@ -1,0 +1,188 @@
+"""Discretisation of a fixed-ends scene into VFIFE nodes and elements, and starting shapes.
+
+Elements never straddle a segment joint: each segment of length L gets ceil(L / h)
+equal elements. Element properties come from :func:`riser.sections.segment_properties`
+(computed once for both solvers); nodal masses, weights, drag coefficients and inertias
+are lumped half-and-half from the two adjacent elements.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.interpolate import CubicSpline
+from scipy.optimize import least_squares
+
+from riser.scene import Scene
+from riser.sections import segment_properties
+
+
+@dataclass
+class Mesh:
+    """Nodes i = 0..n-1 (anchor first) and elements e = 0..n-2.
+
+    s : (n,) unstretched arc length of the nodes [m].
+    l0, EA, EI, mass_pl, weight_pl, rot_pl, added_pl, cdn_pl, cdt_pl : (ne,) element
+        length [m] and per-length section values (EA [N], EI [N m2], mass [kg/m], submerged
+        weight [N/m, + down], diametral rotary inertia [kg m], added mass [kg/m], drag
+        coefficients 0.5 rho D C_D [kg/m2]).
+    segment : (ne,) segment index of each element.
+    mass, weight, rot, added, cdn, cdt, trib : (n,) lumped nodal values (kg, N, kg m2 per
+        unit rotational-inertia scale, kg, kg/m, kg/m, tributary length m).
+    """
+
+    s: np.ndarray
+    l0: np.ndarray
+    EA: np.ndarray
+    EI: np.ndarray
+    mass_pl: np.ndarray
+    weight_pl: np.ndarray
+    rot_pl: np.ndarray
+    added_pl: np.ndarray
+    cdn_pl: np.ndarray
+    cdt_pl: np.ndarray
+    segment: np.ndarray
+
+    @property
+    def n(self) -> int:
+        return len(self.s)
+
+    @property
+    def ne(self) -> int:
+        return len(self.l0)
+
+    def lump(self, per_length: np.ndarray) -> np.ndarray:
+        """Nodal lumping of an element per-length quantity: half of q*l0 to each end."""
+        q = per_length * self.l0
+        out = np.zeros(self.n)
+        out[:-1] += 0.5 * q
+        out[1:] += 0.5 * q
+        return out
+
+    @property
+    def trib(self) -> np.ndarray:
+        return self.lump(np.ones(self.ne))
+
+
+def build_mesh(scene: Scene, element_length: float) -> Mesh:
+    """Mesh ``scene`` with elements of at most ``element_length`` [m]."""
+    props = segment_properties(scene)
+    cols: dict[str, list] = {k: [] for k in ("l0", "EA", "EI", "mass_pl", "weight_pl", "rot_pl",
+                                             "added_pl", "cdn_pl", "cdt_pl", "segment")}
+    s = [0.0]
+    for p in props:
+        ne = max(1, int(math.ceil(p.length / element_length - 1e-9)))
+        le = p.length / ne
+        for _ in range(ne):
+            s.append(s[-1] + le)
+        cols["l0"] += [le] * ne
+        cols["EA"] += [p.EA] * ne
+        cols["EI"] += [p.EI] * ne
+        cols["mass_pl"] += [p.mass] * ne
+        cols["weight_pl"] += [p.weight] * ne
+        cols["rot_pl"] += [0.5 * p.rotary_inertia] * ne      # diametral = polar / 2
+        cols["added_pl"] += [p.added_mass] * ne
+        cols["cdn_pl"] += [p.drag_normal_coef] * ne
+        cols["cdt_pl"] += [p.drag_tangential_coef] * ne
+        cols["segment"] += [p.index] * ne
+    arrays = {k: np.asarray(v, dtype=float if k != "segment" else np.int64)
+              for k, v in cols.items()}
+    s_arr = np.asarray(s)
+    s_arr[-1] = props[-1].s_end
+    return Mesh(s=s_arr, **arrays)
+
+
+# ----------------------------------------------------------------- starting shape
+def _cumtrapz(y: np.ndarray, x: np.ndarray) -> np.ndarray:
+    out = np.zeros_like(y)
+    out[1:] = np.cumsum(0.5 * (y[1:] + y[:-1]) * np.diff(x))
+    return out
+
+
+def catenary_shape(scene: Scene, s_nodes: np.ndarray, grid_step: float = 1.0):
+    """Multi-segment extensible catenary through the scene's fixed ends (no bending).
+
+    With a seabed and the anchor on it (y = 0), the line lies straight on the seabed from
+    the anchor to a touchdown arc length s_t, then hangs as a catenary with horizontal
+    force H: V(s) = integral of w from s_t, x' = (1 + T/EA) H/T, y' = (1 + T/EA) V/T.
+    Otherwise the line hangs from the anchor with the unknown vertical force V0 there.
+    The two unknowns are found by least squares so the end lands on the hang-off.
+    Returns (X (n, 3), D (n, 3) unit tangents, info dict).
+    """
+    props = segment_properties(scene)
+    a = np.asarray(scene.ends.anchor, float)
+    h = np.asarray(scene.ends.hang_off, float)
+    L = scene.total_length
+    m = max(200, int(math.ceil(L / grid_step)))
+    sg = np.linspace(0.0, L, m + 1)
+    w = np.empty_like(sg)
+    ea = np.empty_like(sg)
+    for p in props:
+        sel = (sg >= p.s_start - 1e-9)
+        w[sel] = p.weight
+        ea[sel] = p.EA
+    on_seabed = scene.seabed is not None and a[1] <= 1e-9
+    W = _cumtrapz(w, sg)          # integral of w from the anchor
+    span = h - a
+    chord = float(np.hypot(*span))
+    wref = float(np.mean(np.abs(w))) or 1.0
+
+    def shape(params):
+        H = abs(params[0]) * wref * chord
+        if on_seabed:
+            st = min(max(params[1], 0.0), 1.0) * L
+            V = W - np.interp(st, sg, W)
+            V = np.where(sg < st, 0.0, V)
+        else:
+            V = W + params[1] * wref * chord
+        T = np.sqrt(H * H + V * V)
+        f = 1.0 + T / ea
+        x = a[0] + _cumtrapz(f * H / T, sg)
+        y = a[1] + _cumtrapz(f * V / T, sg)
+        return x, y, H, V, T
+
+    def resid(params):
+        x, y, *_ = shape(params)
+        return np.array([x[-1] - h[0], y[-1] - h[1]]) / chord
+
+    best = None
+    guesses_2 = (0.0, 0.1, 0.2, 0.35, 0.5) if on_seabed else (-1.0, -0.3, 0.0, 0.3)
+    for g1 in (0.05, 0.2, 0.5, 1.0, 3.0):
+        for g2 in guesses_2:
+            try:
+                sol = least_squares(resid, [g1, g2], method="lm", xtol=1e-12, ftol=1e-12)
+            except Exception:   # pragma: no cover - a bad start
+                continue
+            err = float(np.max(np.abs(sol.fun)))
+            if best is None or err < best[0]:
+                best = (err, sol.x)
+        if best is not None and best[0] < 1e-9:
+            break
+    err, params = best
+    x, y, H, V, T = shape(params)
+    X = np.zeros((len(s_nodes), 3))
+    X[:, 0] = np.interp(s_nodes, sg, x)
+    X[:, 1] = np.interp(s_nodes, sg, y)
+    X[-1, :2] = h
+    X[0, :2] = a
+    D = np.zeros_like(X)
+    D[:, 0] = np.interp(s_nodes, sg, H / T)
+    D[:, 1] = np.interp(s_nodes, sg, V / T)
+    D /= np.linalg.norm(D, axis=1)[:, None]
+    info = {"catenary_misfit_m": err * chord, "catenary_H": H,
+            "catenary_tdp_s": (min(max(params[1], 0.0), 1.0) * L) if on_seabed else None}
+    return X, D, info
+
+
+def interpolate_state(s_from: np.ndarray, X: np.ndarray, s_to: np.ndarray):
+    """Positions on a new mesh by a cubic spline of the old positions in unstretched arc
+    length (so the stretch carries over), directors from the spline's tangent."""
+    cs = CubicSpline(s_from, X, axis=0, bc_type="not-a-knot")
+    Xn = cs(s_to)
+    Dn = cs(s_to, 1)
+    Dn /= np.linalg.norm(Dn, axis=1)[:, None]
+    Xn[0] = X[0]
+    Xn[-1] = X[-1]
+    return Xn, Dn

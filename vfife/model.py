@@ -1,0 +1,206 @@
+"""Thin state layer around the kernels: arrays of one mesh, the active effects, stepping.
+
+A :class:`Model` holds the nodal state (3D arrays always; a planar scene is stepped by
+the planar kernels on 2D copies, see :meth:`Model.run`), the lumped nodal properties and
+the flags of the active effects, so that a scene without current does no drag work, a
+static run no added-mass work, and a planar scene no out-of-plane work.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from riser.scene import Scene
+
+from . import kernels
+from .mesh import Mesh
+
+
+class Model:
+    """Arrays for the kernels, component-major: ``X, V, D, W`` are (3, n) (see
+    :mod:`vfife.kernels`); :meth:`positions` and :meth:`directors` give (n, 3) copies.
+
+    Parameters
+    ----------
+    scene, mesh : the fixed-ends scene and its mesh.
+    rot_scale : factor on the physical rotational inertia (statics: a fictitious inertia
+        that does not change the equilibrium; dynamics: as the scene says, default 1).
+    added_mass : include the added mass normal to the axis (dynamics only).
+    planar : step with the planar kernels (the scene has nothing out of plane).
+    """
+
+    def __init__(self, scene: Scene, mesh: Mesh, *, rot_scale: float, added_mass: bool,
+                 planar: bool):
+        self.scene = scene
+        self.mesh = mesh
+        self.planar = planar
+        n, ne = mesh.n, mesh.ne
+        self.X = np.zeros((3, n))
+        self.V = np.zeros((3, n))
+        self.D = np.zeros((3, n))
+        self.D[0] = 1.0
+        self.W = np.zeros((3, n))
+        self.l0 = mesh.l0.copy()
+        self.kax = mesh.EA / mesh.l0
+        self.kb = mesh.EI / mesh.l0
+        self.mass = mesh.lump(mesh.mass_pl)
+        self.madd = mesh.lump(mesh.added_pl) if added_mass else np.zeros(n)
+        self.im = 1.0 / (self.mass + self.madd)
+        self.imd = 1.0 / self.mass - self.im
+        self.jrot = rot_scale * mesh.lump(mesh.rot_pl)
+        self.wload = mesh.lump(mesh.weight_pl)
+        self.trib = mesh.trib
+        self.cdn = mesh.lump(mesh.cdn_pl)
+        self.cdt = mesh.lump(mesh.cdt_pl)
+        cur = scene.current
+        self.use_drag = bool(cur is not None and cur.max_abs_speed > 0.0)
+        if cur is not None:
+            self.heights = np.asarray(cur.heights, float)
+            self.speeds = np.asarray(cur.speeds, float)
+            self.cdir = np.asarray(cur.direction, float)
+        else:
+            self.heights = np.zeros(1)
+            self.speeds = np.zeros(1)
+            self.cdir = np.array([1.0, 0.0, 0.0])
+        sb = scene.seabed
+        self.use_seabed = sb is not None
+        self.kseabed = sb.stiffness if sb is not None else 0.0
+        self.mu = sb.friction if sb is not None else 0.0
+        zeta = sb.damping if sb is not None else 0.0
+        self.cseabed = 2.0 * zeta * np.sqrt(self.kseabed * self.trib * (self.mass + self.madd))
+        self.vfric = 0.01          # [m/s] Coulomb friction regularisation speed
+        k = 2 if planar else 3
+        self.F = np.zeros((k, ne))
+        self.MA = np.zeros((k - 1 if planar else 3, ne))
+        self.MB = np.zeros_like(self.MA)
+        self.Fn = np.zeros((k, n))
+        self.Mn = np.zeros((self.MA.shape[0], n))
+        self.steps = 0
+
+    # -------------------------------------------------------------- effects
+    @property
+    def effects(self) -> list[str]:
+        out = ["weight", "axial", "bending"]
+        if self.use_seabed:
+            out.append("seabed")
+            if self.mu > 0.0:
+                out.append("seabed_friction")
+        if self.use_drag:
+            out.append("current_drag")
+        if np.any(self.madd > 0.0):
+            out.append("added_mass")
+        return out
+
+    def positions(self) -> np.ndarray:
+        return self.X.T.copy()
+
+    def directors(self) -> np.ndarray:
+        return self.D.T.copy()
+
+    def set_state(self, X: np.ndarray, D: np.ndarray) -> None:
+        """Positions and directors from (n, 3) arrays; velocities zero."""
+        self.X[:] = np.asarray(X, float).T
+        Dn = np.asarray(D, float) / np.linalg.norm(D, axis=1)[:, None]
+        self.D[:] = Dn.T
+        self.V[:] = 0.0
+        self.W[:] = 0.0
+
+    # -------------------------------------------------------------- stepping
+    def run(self, nsteps: int, dt: float, c: float, *, top_disp: np.ndarray | None = None,
+            top_axis=(0.0, 1.0, 0.0), top0: np.ndarray | None = None, tol_f: float = -1.0,
+            tol_m: float = -1.0, vmax: float = 1.0e3):
+        """Advance up to ``nsteps`` steps of ``dt`` [s] with damping ``c`` [1/s]; the
+        hang-off follows ``top0 + top_disp[k] * top_axis`` (default: stays put).
+        Returns (steps, force residual [N], moment residual [N m], kinetic energy [J],
+        status 0 done / 1 converged / 2 blow-up)."""
+        if top_disp is None:
+            top_disp = np.zeros(nsteps + 1)
+        top0 = self.X[:, -1].copy() if top0 is None else np.asarray(top0, float)
+        axis = np.asarray(top_axis, float)
+        out = kernels.run(nsteps, self.planar, self.X, self.V, self.D, self.W, self.F,
+                          self.MA, self.MB, self.Fn, self.Mn, self.l0, self.kax, self.kb,
+                          self.mass, self.im, self.imd, 1.0 / self.jrot, self.wload, self.trib,
+                          self.cdn, self.cdt, self.heights, self.speeds,
+                          self.cdir[:2].copy() if self.planar else self.cdir, self.use_drag,
+                          self.kseabed, self.cseabed, self.mu, self.vfric, self.use_seabed,
+                          dt, c, top0, axis, top_disp, tol_f, tol_m, vmax)
+        self.steps += int(out[0])
+        return out
+
+    # -------------------------------------------------------------- results
+    def element_state(self):
+        """(N [N], Ma, Mb (3, ne) [N m], Q [N], l [m]) of the current state."""
+        return kernels.element_state(self.X, self.D, self.l0, self.kax, self.kb)
+
+    def nodal_results(self) -> dict:
+        """Tension, moment, shear and curvature at the nodes.
+
+        Element axial and shear forces are constant along an element and belong to its
+        midpoint: interior nodes take the average of their two elements, end nodes the
+        linear extrapolation of the last two. Nodal moment = mean of the end moments of the
+        two elements meeting there (they balance in equilibrium).
+        """
+        N, Ma, Mb, Q, L = self.element_state()
+        n = self.mesh.n
+
+        def to_nodes(v):
+            out = np.empty(n)
+            out[1:-1] = 0.5 * (v[1:] + v[:-1])
+            if len(v) >= 2:
+                out[0] = 1.5 * v[0] - 0.5 * v[1]
+                out[-1] = 1.5 * v[-1] - 0.5 * v[-2]
+            else:
+                out[0] = out[-1] = v[0]
+            return out
+
+        M = np.zeros((3, n))
+        cnt = np.zeros(n)
+        M[:, :-1] += Ma
+        M[:, 1:] -= Mb         # the end-b moment acts with the opposite sense on the node
+        cnt[:-1] += 1
+        cnt[1:] += 1
+        M /= cnt
+        mom = np.linalg.norm(M, axis=0)
+        EI_n = np.zeros(n)
+        EI_n[:-1] += self.mesh.EI
+        EI_n[1:] += self.mesh.EI
+        EI_n /= cnt
+        return {"tension": to_nodes(N), "moment": mom, "shear": to_nodes(Q),
+                "curvature": mom / EI_n, "moment_vec": M.T, "element_tension": N,
+                "element_shear": Q}
+
+    def energy(self) -> dict:
+        """Kinetic, strain and gravity energies [J] of the current state (numpy, for tests)."""
+        N, Ma, Mb, Q, L = self.element_state()
+        V, D, W = self.V.T, self.D.T, self.W.T
+        ke = 0.5 * np.sum(self.mass[:, None] * V ** 2)
+        if np.any(self.madd > 0):
+            vn = V - np.sum(V * D, axis=1)[:, None] * D
+            ke += 0.5 * np.sum(self.madd[:, None] * vn ** 2)
+        ke += 0.5 * np.sum(self.jrot[:, None] * W ** 2)
+        ua = 0.5 * np.sum(self.kax * (L - self.l0) ** 2)
+        X = self.X.T
+        e = (X[1:] - X[:-1]) / L[:, None]
+        pa = np.cross(e, D[:-1])
+        pb = np.cross(e, D[1:])
+        ub = np.sum(self.kb * (2 * np.sum(pa * pa, 1) + 2 * np.sum(pa * pb, 1)
+                               + 2 * np.sum(pb * pb, 1)))
+        ug = np.sum(self.wload * X[:, 1])
+        return {"kinetic": float(ke), "axial": float(ua), "bending": float(ub),
+                "gravity": float(ug), "total": float(ke + ua + ub + ug)}
+
+
+def max_speed_hint(scene: Scene) -> float:
+    """Largest current speed [m/s] plus a top-motion speed bound (for the drag step)."""
+    v = scene.current.max_abs_speed if scene.current is not None else 0.0
+    dyn = scene.dynamics
+    if dyn is not None and dyn.top_motion is not None:
+        tm = dyn.top_motion
+        if tm.times is None:
+            v += 2.0 * math.pi * tm.amplitude / tm.period
+        else:
+            d = np.abs(np.diff(tm.displacements) / np.diff(tm.times))
+            v += float(np.max(d)) if len(d) else 0.0
+    return v

@@ -1,0 +1,192 @@
+"""Public entry point: :func:`solve` a fixed-ends scene with the VFIFE method."""
+
+from __future__ import annotations
+
+import csv
+import math
+import time
+
+import numpy as np
+
+from riser.profile import Profile
+from riser.result import SolveResult
+from riser.scene import Scene
+
+from . import kernels
+from .dynamics import run_dynamics
+from .ends import require_fixed_ends
+from .mesh import build_mesh
+from .model import Model
+from .statics import solve_static
+
+_COMPILED = {"done": False, "compile_s": 0.0}
+
+
+def warm_up() -> float:
+    """Compile (or load from Numba's cache) every kernel on a tiny problem; returns the
+    time spent [s] (first run: compilation; later runs: a cache load, ~0.1 s)."""
+    if _COMPILED["done"]:
+        return 0.0
+    t0 = time.perf_counter()
+    n = 4
+    X = np.zeros((3, n))
+    X[0] = np.arange(n, dtype=float)
+    D = np.zeros((3, n))
+    D[0] = 1.0
+    for planar in (True, False):
+        k = 2 if planar else 3
+        one = np.ones(n)
+        kernels.run(2, planar, X.copy(), np.zeros((3, n)), D.copy(), np.zeros((3, n)),
+                    np.zeros((k, n - 1)), np.zeros((k - 1 if planar else 3, n - 1)),
+                    np.zeros((k - 1 if planar else 3, n - 1)), np.zeros((k, n)),
+                    np.zeros((k - 1 if planar else 3, n)), np.ones(n - 1), np.ones(n - 1),
+                    np.ones(n - 1), one, one, one * 0.0, one, one, one, one, one,
+                    np.zeros(1), np.ones(1), np.array([1.0, 0.0] if planar else [1.0, 0, 0]),
+                    True, 1.0, one, 0.1, 0.01, True, 1e-3, 0.0, X[:, -1].copy(),
+                    np.array([0.0, 1.0, 0.0]), np.zeros(3), -1.0, -1.0, 1e3)
+    kernels.element_state(X, D, np.ones(n - 1), np.ones(n - 1), np.ones(n - 1))
+    _COMPILED.update(done=True, compile_s=time.perf_counter() - t0)
+    return _COMPILED["compile_s"]
+
+
+def bending_checks(scene: Scene, mesh, tension: np.ndarray) -> list[str]:
+    """Warnings when elements are long compared with the bending lengths
+    sqrt(EI/T) (tension boundary layer) or (EI/|w|)^(1/3) (weight-governed sag bends)."""
+    out = []
+    h = float(np.max(mesh.l0))
+    T = np.abs(tension)
+    lb_t = np.sqrt(mesh.EI / np.maximum(T, 1e-9))
+    w = np.abs(mesh.weight_pl)
+    lb_w = np.where(w > 0, np.cbrt(mesh.EI / np.maximum(w, 1e-300)), np.inf)
+    mt = float(np.min(lb_t))
+    mw = float(np.min(lb_w))
+    if h > 0.5 * mt:
+        out.append(f"element length {h:g} m is long compared with the bending length "
+                   f"sqrt(EI/T) = {mt:.3g} m (use <= {0.5 * mt:.2g} m for the moment peaks)")
+    if h > 0.25 * mw:
+        out.append(f"element length {h:g} m is long compared with the bending length "
+                   f"(EI/|w|)^(1/3) = {mw:.3g} m (use <= {0.25 * mw:.2g} m)")
+    return out
+
+
+def _tdp_s(s: np.ndarray, y: np.ndarray, scene: Scene) -> float | None:
+    """Arc length of the touchdown point: last node from the bottom in contact (y <= 0),
+    refined by linear interpolation of the height to the crossing of y = 0."""
+    if scene.seabed is None:
+        return None
+    contact = y <= 0.0
+    if not contact[0]:
+        return None
+    i = int(np.argmin(contact)) - 1 if not np.all(contact) else len(s) - 1
+    if i < 0:
+        return None
+    if i + 1 < len(s) and y[i + 1] > y[i]:
+        return float(s[i] + (0.0 - y[i]) / (y[i + 1] - y[i]) * (s[i + 1] - s[i]))
+    return float(s[i])
+
+
+def make_profile(model: Model, scene: Scene, meta: dict | None = None) -> Profile:
+    """Profile at the nodes of ``model`` (see :meth:`Model.nodal_results`)."""
+    r = model.nodal_results()
+    X = model.positions()
+    D = model.directors()
+    theta = np.arctan2(D[:, 1], np.hypot(D[:, 0], D[:, 2]))
+    return Profile(s=model.mesh.s.copy(), x=X[:, 0], y=X[:, 1], z=X[:, 2], theta=theta,
+                   tension=r["tension"], moment=r["moment"], shear=r["shear"],
+                   curvature=r["curvature"], tdp_s=_tdp_s(model.mesh.s, X[:, 1], scene),
+                   meta=meta or {})
+
+
+def _csv_writer(columns: dict):
+    names = list(columns)
+
+    def write(path):
+        with open(path, "w", newline="") as fh:
+            w = csv.writer(fh)
+            w.writerow(names)
+            for row in zip(*(columns[k] for k in names)):
+                w.writerow([f"{v:.10g}" for v in row])
+    return write
+
+
+def _npz_writer(arrays: dict):
+    def write(path):
+        np.savez_compressed(path, **arrays)
+    return write
+
+
+def solve(scene: Scene, *, element_length: float | None = None, tolerance: float | None = None,
+          progress=None) -> SolveResult:
+    """Solve a fixed-ends scene (statics, then dynamics if the scene has [dynamics]).
+
+    element_length [m]: default ``[vfife] element_length`` (1 m); tolerance: largest nodal
+    out-of-balance force / one element's weight (default ``[vfife] static_tolerance``,
+    1e-3); progress: optional callable(str).
+    Raises UnsupportedSceneError for scenes without fixed ends. Never returns NaN results:
+    a failed run has converged=False and profile None, with the reason in ``message``.
+    ``wall_time_s`` excludes Numba compilation (reported as info['compile_s']).
+    """
+    require_fixed_ends(scene)
+    vf = scene.vfife
+    h = float(element_length if element_length is not None else vf.get("element_length", 1.0))
+    tol = float(tolerance if tolerance is not None else vf.get("static_tolerance", 1e-3))
+    planar = bool(scene.is_planar)
+    compile_s = warm_up()
+    t0 = time.perf_counter()
+    model, sinfo = solve_static(scene, h, tol, planar, progress)
+    mesh = model.mesh
+    info = {"elements": mesh.ne, "nodes": mesh.n, "element_length": float(np.max(mesh.l0)),
+            "time_step": sinfo["time_step"], "steps": sinfo["steps"],
+            "residual": sinfo["residual"], "moment_residual": sinfo["moment_residual"],
+            "tolerance": tol, "compile_s": compile_s, "static_scheme": sinfo["static_scheme"],
+            "step_limit": sinfo["step_limit"], "critical_steps": sinfo["critical_steps"],
+            "kernel": "planar" if planar else "3d", "static_stages": sinfo["stages"],
+            "catenary_tdp_s": sinfo.get("catenary_tdp_s")}
+    effects = model.effects
+    finite = bool(np.all(np.isfinite(model.X)) and np.all(np.isfinite(model.D)))
+    r = model.nodal_results() if finite else None
+    info["warnings"] = bending_checks(scene, mesh, r["element_tension"]) if finite else []
+    if sinfo["status"] != "converged" or not finite:
+        why = ("blow-up during the static relaxation (NaN or runaway speeds); likely cause: "
+               "time step above the critical step or an impossible geometry"
+               if sinfo["status"] == "blow-up" or not finite else
+               f"static relaxation did not reach the tolerance {tol:g} in {sinfo['steps']} "
+               f"steps (residual {sinfo['residual']:.3g} x element weight); raise [vfife] "
+               "max_steps or check the geometry")
+        return SolveResult(method="vfife", scene=scene.name, converged=False, message=why,
+                           profile=None, wall_time_s=time.perf_counter() - t0,
+                           effects=effects, info=info)
+    profile = make_profile(model, scene, meta={"method": "vfife"})
+    extra: dict = {}
+    message = (f"static equilibrium: residual {sinfo['residual']:.2g} x element weight after "
+               f"{sinfo['steps']} steps")
+    converged = True
+    if scene.dynamics is not None:
+        dmodel, dinfo = run_dynamics(scene, model, planar, progress)
+        effects = dinfo["effects"]
+        info.update({"dynamic_time_step": dinfo["time_step"], "dynamic_steps": dinfo["steps"],
+                     "dynamic_step_limit": dinfo["step_limit"],
+                     "dynamic_wall_s": dinfo["wall_s"],
+                     "realtime_factor": dinfo["realtime_factor"],
+                     "states_file": "states.npz (t (k,), s (n,), x (k, n, 3), v (k, n, 3))"})
+        if dinfo["status"] != "ok":
+            converged = False
+            message = dinfo["message"]
+            profile = None
+        else:
+            message += f"; {dinfo['message']} ({dinfo['steps']} steps of {dinfo['time_step']:.3g} s)"
+            ts = dinfo["timeseries"]
+            env = dinfo["envelope"]
+            extra = {"timeseries.csv": _csv_writer(ts), "envelope.csv": _csv_writer(env),
+                     "states.npz": _npz_writer(dinfo["states"])}
+            info["dynamic_max_hang_off_tension"] = float(np.max(ts["hang_off_tension"]))
+            info["dynamic_min_hang_off_tension"] = float(np.min(ts["hang_off_tension"]))
+            info["dynamic_max_moment"] = float(np.max(env["moment_max"]))
+    res = SolveResult(method="vfife", scene=scene.name, converged=converged, message=message,
+                      profile=profile, wall_time_s=time.perf_counter() - t0, effects=effects,
+                      info=info, extra_files=extra)
+    # arrays for programmatic use (not in summary.json): time series and envelopes
+    res.dynamics = ({k: dinfo[k] for k in ("timeseries", "envelope", "states")}
+                    if scene.dynamics is not None else None)
+    res.model = model
+    return res
