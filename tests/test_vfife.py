@@ -13,6 +13,7 @@ import pytest
 from scipy.optimize import fsolve
 
 import vfife
+from riser.transform import fixed_ends_scene, rigid_seabed_stiffness
 from riser.errors import UnsupportedSceneError
 from riser.profile import summarize
 from riser.scene import load_scene, scene_from_dict
@@ -49,7 +50,7 @@ def line_scene(length, anchor, hang_off, *, EA=1e6, EI=1e4, mass=10.0, weight=0.
 
 
 def wang_fixed():
-    return vfife.fixed_ends_scene(load_scene(WANG["path"]), WANG_TOP, 300.0)
+    return fixed_ends_scene(load_scene(WANG["path"]), WANG_TOP, 300.0)
 
 
 # ------------------------------------------------------------------ ends
@@ -62,7 +63,7 @@ def test_fixed_ends_scene_conversion():
     sc = wang_fixed()
     assert sc.ends.kind == "fixed" and sc.ends.anchor == (-300.0, 0.0)
     assert sc.segments[0].length == pytest.approx(690.0)
-    assert sc.seabed is not None and sc.seabed.stiffness == vfife.DEFAULT_SEABED_STIFFNESS
+    assert sc.seabed is not None and sc.seabed.stiffness == rigid_seabed_stiffness(sc.line_types['steel'].bending_stiffness, 1.0)
 
 
 # ------------------------------------------------------------------ closed forms

@@ -9,10 +9,9 @@ prescribed hang-off motion. See :mod:`vfife.kernels` for the equations and
 :func:`vfife.solve` for the entry point.
 
 Public API: ``solve(scene, *, element_length=None, tolerance=None, progress=None)``,
-``fixed_ends_scene(scene, hang_off_xy, seabed_length, seabed_stiffness=None)``.
+``riser.transform.fixed_ends_scene(scene, hang_off_xy, seabed_length)``.
 """
 
-from .ends import DEFAULT_SEABED_STIFFNESS, fixed_ends_scene
 from .solver import solve
 
-__all__ = ["solve", "fixed_ends_scene", "DEFAULT_SEABED_STIFFNESS"]
+__all__ = ["solve"]

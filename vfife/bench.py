@@ -25,7 +25,7 @@ import numpy as np
 
 from riser.scene import Current, Dynamics, TopMotion, load_scene
 
-from .ends import fixed_ends_scene
+from riser.transform import fixed_ends_scene
 from .model import Model
 from .solver import solve, warm_up
 from .timestep import choose_step, critical_steps
