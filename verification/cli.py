@@ -14,7 +14,11 @@ from pathlib import Path
 from riser.errors import SceneError, UnsupportedSceneError
 
 METHODS = ("bvp", "vfife")
-STUDIES = ("wang2014", "yu2021")
+STUDIES = ("wang2014", "yu2021", "compare")
+# scenes with a cross-method comparison report in reports/compare/ (reproduce compare|all)
+COMPARE_SCENES = ("wang2014-baseline", "wang2014-current-neg1p5", "wang2014-current-neg0p75",
+                  "wang2014-current-0p75", "wang2014-current-1p5", "scr-steel",
+                  "yu2021-a2-sheared", "yu2021-a3")
 
 
 def _err(msg: str) -> None:
@@ -89,7 +93,25 @@ def cmd_reproduce(args) -> int:
         elif name == "yu2021":
             from . import yu2021
             yu2021.run(out)
+        elif name == "compare":
+            from . import compare
+            from .catalog import resolve
+            for scene_name in COMPARE_SCENES:
+                t1 = time.perf_counter()
+                try:
+                    comp = compare.compare(resolve(scene_name))
+                except RuntimeError as exc:
+                    print(f"compare {scene_name}: {exc}")
+                    continue
+                compare.write(comp, out / scene_name)
+                print(f"compare {scene_name}: {'PASS' if comp.passed else 'FAIL'} "
+                      f"({time.perf_counter() - t1:.1f} s)")
         print(f"{name}: wrote {out}/ in {time.perf_counter() - t0:.1f} s")
+    from .index import write_index
+    if base is None:
+        print(f"index: {write_index(Path('reports'))}")
+    elif args.name == "all":
+        print(f"index: {write_index(base)}")
     return 0
 
 
