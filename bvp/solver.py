@@ -503,6 +503,11 @@ def _profile(prob: _Problem, sol, scene: Scene) -> tuple[Profile, dict]:
             raise BVPFailure(f"the suspended line passes {abs(ymin):.3g} m below the seabed at "
                              f"s = {c['s'][i]:.1f} m: a second touchdown, which this model "
                              "(one touchdown point) cannot represent")
+    if scene.water_depth is not None and float(np.max(c["y"])) > scene.water_depth + 1e-3:
+        i = int(np.argmax(c["y"]))
+        raise BVPFailure(f"the line rises above the water surface (y = {c['y'][i]:.1f} m > "
+                         f"water_depth {scene.water_depth:g} m at s = {c['s'][i]:.1f} m); the "
+                         "model is fully submerged: reduce the buoyancy or the TDP tension")
     if checks["equilibrium_residual"] > 1e-3:
         raise BVPFailure(f"global force balance violated: residual "
                          f"{checks['equilibrium_residual']:.2e} of the max tension")
