@@ -481,6 +481,9 @@ def _read_vfife(t: Table) -> dict:
                                                       gt=0.0, le=1.0e6),
         # dynamics: fixed time step [s] instead of safety x critical step (expert use)
         "time_step": t.number("time_step", None, gt=0.0, le=10.0, unit="s"),
+        # statics: fixed relaxation step [s] instead of safety x critical step (expert use;
+        # above the critical step the relaxation diverges and says so)
+        "static_time_step": t.number("static_time_step", None, gt=0.0, le=10.0, unit="s"),
     }
     t.finish()
     return {k: v for k, v in out.items() if v is not None}

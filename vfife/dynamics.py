@@ -88,7 +88,8 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
     kseabed = scene.seabed.stiffness if scene.seabed is not None else 0.0
     tmax = float(np.max(np.abs(static.nodal_results()["element_tension"])))
     steps = critical_steps(mesh, rot_scale=rot_scale, tension=1.5 * tmax, added_mass=added,
-                           seabed_stiffness=kseabed, drag_speed=2.0 * max_speed_hint(scene)
+                           seabed_stiffness=kseabed, seabed_damping=model.cseabed,
+                           drag_speed=2.0 * max_speed_hint(scene)
                            if model.use_drag else 0.0)
     dt, limit = choose_step(steps, vf.get("time_step_safety", 0.8))
     if vf.get("time_step") is not None:          # user-fixed step (may exceed the critical)
@@ -142,7 +143,8 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
         t = (j + 1) * env_dt
         if st == 2 or not np.all(np.isfinite(model.X)):
             status = "blow-up"
-            message = (f"blow-up at t = {t:.4g} s (NaN or speed > 1000 m/s); likely cause: "
+            message = (f"dynamics diverged (blow-up) at t = {t:.4g} s (NaN/inf or speed > "
+                       "1000 m/s); likely cause: "
                        + blow_up_cause(scene, {"critical_steps": steps, "time_step": dt}))
             break
         # energy-growth guard: kinetic energy far above the work the motion can put in
@@ -150,7 +152,7 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
             e0 = max(ke, 1.0)
         elif ke > 1e6 * e0 and ke > 1e3 * float(np.sum(model.mass)):
             status = "blow-up"
-            message = (f"energy growth at t = {t:.4g} s (kinetic energy {ke:.3g} J); likely "
+            message = (f"dynamics diverged (blow-up, energy growth) at t = {t:.4g} s (kinetic energy {ke:.3g} J); likely "
                        "cause: " + blow_up_cause(scene, {"critical_steps": steps,
                                                          "time_step": dt}))
             break

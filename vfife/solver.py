@@ -40,7 +40,7 @@ def warm_up() -> float:
                     np.zeros((k, n - 1)), np.zeros((k - 1 if planar else 3, n - 1)),
                     np.zeros((k - 1 if planar else 3, n - 1)), np.zeros((k, n)),
                     np.zeros((k - 1 if planar else 3, n)), np.ones(n - 1), np.ones(n - 1),
-                    np.ones(n - 1), one, one, one * 0.0, one, one, one, one, one,
+                    np.ones(n - 1), one, one, one * 0.0, one, one, one, one, one, one,
                     np.zeros(1), np.ones(1), np.array([1.0, 0.0] if planar else [1.0, 0, 0]),
                     True, 1.0, one, 0.1, 0.01, True, 1e-3, 0.0, X[:, -1].copy(),
                     np.array([0.0, 1.0, 0.0]), np.zeros(3), -1.0, -1.0, 1e3)
@@ -147,8 +147,8 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
     r = model.nodal_results() if finite else None
     info["warnings"] = bending_checks(scene, mesh, r["element_tension"]) if finite else []
     if sinfo["status"] != "converged" or not finite:
-        why = ("blow-up during the static relaxation (NaN or runaway speeds); likely cause: "
-               "time step above the critical step or an impossible geometry"
+        why = (sinfo.get("diverged") or "static relaxation diverged (NaN/inf in the state); "
+               "likely cause: time step above the critical step or an impossible geometry"
                if sinfo["status"] == "blow-up" or not finite else
                f"static relaxation did not reach the tolerance {tol:g} in {sinfo['steps']} "
                f"steps (residual {sinfo['residual']:.3g} x element weight); raise [vfife] "

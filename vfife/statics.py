@@ -72,11 +72,37 @@ def relax(model: Model, dt: float, c: float, tol: float, max_steps: int,
         if st == 1:
             status = "converged"
             break
-        if st == 2:
+        if st == 2 or not (np.all(np.isfinite(model.X)) and np.all(np.isfinite(model.D))):
             status = "blow-up"
             break
     return {"steps": done, "residual": res / wl, "moment_residual": mres / (wl * h),
             "status": status, "wall_s": time.perf_counter() - t0, "dt": dt, "damping": c}
+
+
+def divergence_message(scene, h: float, dt: float, limit: str, steps: dict,
+                       nstep: int) -> str:
+    """Message for a relaxation that diverged (NaN/inf or runaway speeds), naming the
+    likely cause from the step and the critical steps of the mesh being relaxed."""
+    crit = min(steps.values())
+    name = min(steps, key=steps.get)
+    head = (f"static relaxation diverged (NaN/inf or runaway speed) after {nstep} steps on "
+            f"the {h:g} m mesh with time step {dt:.3g} s (critical: {name} {crit:.3g} s)")
+    if dt > crit:
+        if limit.startswith("user"):
+            cause = (f"the fixed [vfife] static_time_step {dt:.3g} s is {dt / crit:.3g} x the "
+                     f"critical step; remove it or use <= {0.8 * crit:.3g} s")
+        else:
+            cause = ("[vfife] time_step_safety too high for the critical-step estimate; "
+                     "lower it")
+    elif "seabed" in steps and steps["seabed"] <= 1.05 * crit:
+        cause = (f"the seabed contact (stiffness {scene.seabed.stiffness:.3g} N/m2, damping "
+                 f"{scene.seabed.damping:g} of critical) limits the step; lower "
+                 "[vfife] time_step_safety or the seabed stiffness")
+    else:
+        cause = ("an impossible or badly started geometry (line much longer or shorter than "
+                 "the span, a slack line buckling); check the ends and segment lengths, or "
+                 "lower [vfife] time_step_safety")
+    return f"{head}; likely cause: {cause}"
 
 
 def solve_static(scene, element_length: float, tolerance: float, planar: bool,
@@ -92,9 +118,10 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
                   f"{h_coarse:g} m -> {element_length:g} m, viscous damping "
                   f"{STATIC_DAMPING:g} x critical of mode 1, rotational inertia x{rot_scale:g}"}
     stages = [h_coarse, element_length] if h_coarse > 1.5 * element_length else [element_length]
+    fixed_dt = vf.get("static_time_step")
     model = None
     total_steps = 0
-    for h in stages:
+    for si, h in enumerate(stages):
         mesh = build_mesh(scene, h)
         if model is None:
             X, D, cinfo = catenary_shape(scene, mesh.s)
@@ -102,26 +129,41 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
             tension = cinfo["catenary_H"]
         else:
             X, D = interpolate_state(model.mesh.s, model.positions(), mesh.s)
+            if scene.seabed is not None:
+                # the cubic spline overshoots below the seabed around the touchdown kink
+                # (7 cm from a 10 m mesh): with a stiff seabed (1e10 N/m2) that penetration
+                # launches the nodes at > 1 km/s; take the linear interpolation there
+                ylin = np.interp(mesh.s, model.mesh.s, model.X[1])
+                X[:, 1] = np.where(X[:, 1] < 0.0, np.maximum(X[:, 1], ylin), X[:, 1])
         new = Model(scene, mesh, rot_scale=rot_scale, added_mass=False, planar=planar)
         new.set_state(X, D)
+        # critical steps of the mesh actually relaxed, with its contact spring and damping
         steps = critical_steps(mesh, rot_scale=rot_scale, tension=2.0 * tension,
-                               seabed_stiffness=kseabed)
+                               seabed_stiffness=kseabed, seabed_damping=new.cseabed)
         dt, limit = choose_step(steps, safety)
+        if fixed_dt is not None:              # expert: fixed step (may exceed the critical)
+            dt, limit = float(fixed_dt), "user ([vfife] static_time_step)"
         c = STATIC_DAMPING * 2.0 * fundamental_omega(mesh, tension)
-        r = relax(new, dt, c, tolerance, max_steps - total_steps, progress=progress,
-                  label=f"{h:g} m mesh")
+        # the coarse stage only provides a starting shape: at most half of the budget
+        budget = max_steps - total_steps
+        if si < len(stages) - 1:
+            budget = max(1, budget // 2)
+        r = relax(new, dt, c, tolerance, budget, progress=progress, label=f"{h:g} m mesh")
         total_steps += r["steps"]
         info.setdefault("stages", []).append({"element_length": h, "elements": mesh.ne,
                                               "time_step": dt, "step_limit": limit,
+                                              "critical_steps": steps,
                                               **{k: r[k] for k in ("steps", "residual",
                                                                    "status", "wall_s",
                                                                    "damping")}})
         model = new
         if r["status"] == "blow-up":
+            info["diverged"] = divergence_message(scene, h, dt, limit, steps, r["steps"])
             break
         tension = float(np.mean(np.abs(model.nodal_results()["element_tension"])))
     last = info["stages"][-1]
     info.update({"steps": total_steps, "residual": last["residual"],
                  "moment_residual": r["moment_residual"], "time_step": last["time_step"],
-                 "status": last["status"], "critical_steps": steps, "step_limit": last["step_limit"]})
+                 "status": last["status"], "critical_steps": steps,
+                 "step_limit": last["step_limit"]})
     return model, info

@@ -8,8 +8,14 @@ M^-1/2 K M^-1/2, exact for a uniform chain):
   inertia J = rho I l: dt = l / (sqrt(3) c);
 - bending (transverse zig-zag) plus string stiffness:
   omega^2 = 48 EI / (m' l^4) + 4 T / (m' l^2)  -> dt ~ l^2 sqrt(m' / (12 EI));
-- seabed spring: omega^2 = k_s l / m_i; Morison drag (explicit, linearised):
-  dt < 2 m_i / (c_dn |u|) with |u| the largest expected relative speed.
+- seabed contact: the spring k_s [N/m2] acts in the same (transverse) direction as the
+  bending zig-zag, so it adds to it (exact for a straight line on the seabed):
+  omega^2 = 48 EI / (m' l^4) + 4 T / (m' l^2) + k_s / m'; the contact damping c_s is an
+  explicit (lagged-velocity) force, which lowers the limit of central differences to
+  dt < 2 (sqrt(1 + zeta^2) - zeta) / omega with zeta = c_s / (2 m omega)
+  (von Neumann analysis of v+ = v + dt (-k x - c v) / m, x+ = x + dt v+);
+- Morison drag (explicit, linearised): dt < 2 m_i / (c_dn |u|) with |u| the largest
+  expected relative speed.
 
 The step is ``safety * min(...)``; every candidate is reported.
 """
@@ -21,10 +27,22 @@ import numpy as np
 from .mesh import Mesh
 
 
+def damped_factor(zeta):
+    """Factor on 2/omega of the central-difference limit with an explicit viscous force
+    of damping ratio zeta: sqrt(1 + zeta^2) - zeta (1 at zeta = 0)."""
+    zeta = np.asarray(zeta, float)
+    return np.sqrt(1.0 + zeta * zeta) - zeta
+
+
 def critical_steps(mesh: Mesh, *, rot_scale: float, tension: float = 0.0,
                    added_mass: bool = False, seabed_stiffness: float = 0.0,
-                   drag_speed: float = 0.0) -> dict:
-    """Critical time steps [s] of ``mesh`` (dict: axial, rotation, bending, seabed, drag)."""
+                   seabed_damping=0.0, drag_speed: float = 0.0) -> dict:
+    """Critical time steps [s] of ``mesh`` (dict: axial, rotation, bending, seabed, drag).
+
+    seabed_damping : nodal contact damping [N s/m] ((n,) or scalar), as used by the
+    kernels (see :attr:`vfife.model.Model.cseabed`); 'seabed' is the transverse limit
+    with the contact spring and this damping on this mesh.
+    """
     m_pl = mesh.mass_pl + (mesh.added_pl if added_mass else 0.0)
     m = mesh.lump(mesh.mass_pl)            # axial direction: no added mass
     mt = mesh.lump(m_pl)                   # transverse
@@ -37,14 +55,21 @@ def critical_steps(mesh: Mesh, *, rot_scale: float, tension: float = 0.0,
     sr = np.zeros(mesh.n)
     sr[:-1] += kr
     sr[1:] += kr
+    # transverse zig-zag stiffness per node (Gershgorin row sum): bending 24 EI/l^3 and
+    # string 2 T/l from each adjacent element
+    kt_e = 24.0 * mesh.EI / mesh.l0 ** 3 + 2.0 * abs(tension) / mesh.l0
+    st = np.zeros(mesh.n)
+    st[:-1] += kt_e
+    st[1:] += kt_e
     out = {
         "axial": float(np.min(2.0 / np.sqrt(2.0 * sa / m))),
         "rotation": float(np.min(2.0 / np.sqrt(sr / J))),
-        "bending": float(np.min(2.0 / np.sqrt(48.0 * mesh.EI / (m_pl * mesh.l0 ** 4)
-                                              + 4.0 * abs(tension) / (m_pl * mesh.l0 ** 2)))),
+        "bending": float(np.min(2.0 / np.sqrt(st / mt))),
     }
     if seabed_stiffness > 0.0:
-        out["seabed"] = float(np.min(2.0 / np.sqrt(seabed_stiffness * mesh.trib / mt)))
+        om = np.sqrt((st + seabed_stiffness * mesh.trib) / mt)
+        zeta = np.broadcast_to(np.asarray(seabed_damping, float), om.shape) / (2.0 * mt * om)
+        out["seabed"] = float(np.min(2.0 * damped_factor(zeta) / om))
     if drag_speed > 0.0:
         cd = mesh.lump(mesh.cdn_pl + mesh.cdt_pl)
         out["drag"] = float(np.min(2.0 * mt / np.maximum(cd * drag_speed, 1e-300)))
