@@ -142,11 +142,32 @@ def cmd_regress(args) -> int:
     return 0
 
 
+def cmd_stress(args) -> int:
+    from . import stress
+    out = Path(args.out) if args.out else Path("reports") / "stress"
+    df = stress.run(out, names=args.scenes or None)
+    silent = df[df.outcome == "SILENT FAILURE"]
+    print(f"stress: {len(df)} runs, {len(silent)} silent failure(s); wrote {out}/report.md")
+    return 1 if len(silent) else 0
+
+
 def cmd_bench(args) -> int:
+    import json
+
+    from bvp.bench import run_bench as bvp_bench
     from vfife.bench import format_table, run_bench
+
+    from .catalog import resolve
+    from .wang2014 import SCENES
     out = Path(args.out) if args.out else Path("reports") / "bench"
     bench = run_bench(out)
+    bench["bvp"] = bvp_bench(resolve(SCENES[0.0]), [resolve(n) for v, n in SCENES.items() if v])
+    (out / "bench.json").write_text(json.dumps(bench, indent=2) + "\n")
     print(format_table(bench))
+    b = bench["bvp"]
+    print(f"BVP: Wang baseline at tolerance 1e-6 {b['bvp_baseline_s']:.3f} s (median of "
+          f"{b['bvp_baseline_runs']}, target < 0.5 s); Table 2 batch of {b['bvp_table2_solves']} "
+          f"solves {b['bvp_table2_s']:.2f} s (target < 10 s)")
     print(f"wrote {out}/bench.json")
     return 0
 
@@ -179,6 +200,10 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("scenes", nargs="*", help="only these built-in scenes")
     s.add_argument("--update", action="store_true", help="rewrite the stored summaries")
     s.set_defaults(func=cmd_regress)
+    s = sub.add_parser("stress", help="run the hard-case suite with both methods")
+    s.add_argument("scenes", nargs="*", help="only these hard scenes")
+    s.add_argument("--out", help="output directory (default reports/stress)")
+    s.set_defaults(func=cmd_stress)
     s = sub.add_parser("bench", help="VFIFE kernel and solver benchmark")
     s.add_argument("--out", help="output directory (default reports/bench)")
     s.set_defaults(func=cmd_bench)

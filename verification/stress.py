@@ -1,0 +1,180 @@
+"""Hard-case suite: every hard scene with both methods, and proof of no silent failure.
+
+For each scene in ``verification/scenes/hard/`` and each method the outcome is one of
+
+- ``converged``: the solver met its own test, and the checks below pass;
+- ``refused``: the scene is outside the method (e.g. out-of-plane current for the BVP),
+  said with a clear message before solving;
+- ``no equilibrium``: the solver stopped with evidence that the static problem of that
+  form has no solution (e.g. the touchdown tension driven to zero under the load);
+- ``failed``: it stopped with a stated reason;
+- ``SILENT FAILURE``: anything else — NaN/inf in a returned profile, an exception instead
+  of a message, a converged result that violates its own equilibrium check, unbounded
+  dynamic energy. The suite exists to show there are none.
+
+Checks on a converged result: finite profile; equilibrium residual (BVP: largest
+collocation residual and the global force balance; VFIFE: largest nodal out-of-balance
+force / one element's weight); dynamics: finite hang-off tension and a kinetic-energy
+proxy (mean squared node speed) that does not grow over the last fifth of the run.
+Where both methods converge, the comparison protocol's rows are counted.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import traceback
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from riser.errors import SceneError, UnsupportedSceneError
+
+from .catalog import SCENE_DIR, resolve
+from .report import GENERATED_NOTE, fmt, md_table
+
+HARD_DIR = SCENE_DIR / "hard"
+COLUMNS = ["scene", "method", "outcome", "residual", "residual_kind", "wall_time_s", "agreement",
+           "message"]
+# A converged result must satisfy its own test: VFIFE residual in element weights (the
+# solver's default tolerance is 1e-3; allow its own tolerance x 1.01), BVP collocation
+# residual (solve_bvp tolerance) and global force balance (1e-4 of T_max).
+BVP_EQUILIBRIUM_LIMIT = 1.0e-4
+
+
+def hard_scenes() -> list[str]:
+    return sorted(p.stem for p in HARD_DIR.glob("*.toml"))
+
+
+def _classify_failure(message: str) -> str:
+    m = message.lower()
+    if "no static equilibrium" in m or "tends to zero" in m or "cannot reach" in m:
+        return "no equilibrium"
+    return "failed"
+
+
+def run_one(name: str, method: str) -> tuple[dict, object]:
+    """Solve one scene with one method and classify the outcome; never raises."""
+    from .cli import solve_scene
+    row = {"scene": name, "method": method, "residual": None, "residual_kind": "",
+           "agreement": "", "message": ""}
+    t0 = time.perf_counter()
+    res = None
+    try:
+        scene = resolve(name)
+        res = solve_scene(scene, method)
+    except UnsupportedSceneError as exc:
+        row.update(outcome="refused", message=str(exc))
+    except (SceneError, RuntimeError) as exc:
+        row.update(outcome=_classify_failure(str(exc)), message=str(exc))
+    except Exception as exc:                       # noqa: BLE001 - the point is to catch it
+        row.update(outcome="SILENT FAILURE",
+                   message=f"exception {type(exc).__name__}: {exc} "
+                           f"({traceback.format_exc(limit=2).splitlines()[-1]})")
+    row["wall_time_s"] = time.perf_counter() - t0
+    if res is None:
+        return row, None
+    row["message"] = res.message
+    if not res.converged:
+        if res.profile is not None and not res.profile.is_finite():
+            row["outcome"] = "SILENT FAILURE"
+            row["message"] += " (and returned a non-finite profile)"
+        else:
+            row["outcome"] = _classify_failure(res.message)
+        return row, None
+    problems = []
+    if res.profile is None or not res.profile.is_finite():
+        problems.append("non-finite profile")
+    if method == "bvp":
+        row["residual"] = res.info.get("equilibrium_residual")
+        row["residual_kind"] = "force balance / T_max"
+        if row["residual"] is None or row["residual"] > BVP_EQUILIBRIUM_LIMIT:
+            problems.append(f"force balance {row['residual']}")
+    else:
+        row["residual"] = res.info.get("residual")
+        row["residual_kind"] = "out-of-balance / element weight"
+        tol = res.info.get("tolerance", 1e-3)
+        if row["residual"] is None or not row["residual"] <= 1.01 * tol:
+            problems.append(f"residual {row['residual']} above its tolerance {tol}")
+        dyn = getattr(res, "dynamics", None)
+        if dyn is not None:
+            problems += _dynamic_checks(dyn)
+    row["outcome"] = "SILENT FAILURE" if problems else "converged"
+    if problems:
+        row["message"] += " | " + "; ".join(problems)
+    return row, res
+
+
+def _dynamic_checks(dyn: dict) -> list[str]:
+    out = []
+    ts = dyn.get("timeseries", {})
+    T = np.asarray(ts.get("hang_off_tension", []), dtype=float)
+    if T.size == 0 or not np.all(np.isfinite(T)):
+        out.append("non-finite hang-off tension series")
+    st = dyn.get("states")
+    if st is not None and len(st.get("t", [])) >= 10:
+        v2 = np.mean(np.sum(np.asarray(st["v"]) ** 2, axis=2), axis=1)   # (k,)
+        k = len(v2)
+        mid, last = v2[k // 5: 4 * k // 5], v2[4 * k // 5:]
+        if not np.all(np.isfinite(v2)):
+            out.append("non-finite velocities")
+        elif mid.size and last.max() > 4.0 * max(mid.max(), 1e-12):
+            out.append(f"kinetic energy grows: last fifth {last.max():.3g} vs {mid.max():.3g} (m/s)^2")
+    return out
+
+
+def run(out_dir: str | Path = "reports/stress", names: list[str] | None = None, log=print) -> pd.DataFrame:
+    """Run the hard-case suite; write ``summary.csv`` and ``report.md``."""
+    from .compare import agreement, reference_depth
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    rows = []
+    for name in names or hard_scenes():
+        results = {}
+        for method in ("bvp", "vfife"):
+            row, res = run_one(name, method)
+            results[method] = res
+            rows.append(row)
+            log(f"stress {name} [{method}]: {row['outcome']} ({row['wall_time_s']:.1f} s)")
+        b, v = results["bvp"], results["vfife"]
+        if b is not None and v is not None:
+            shift = 0.0
+            note = v.info.get("ends_conversion")
+            if note:
+                from .equivalence import DEFAULT_SEABED_LENGTH
+                shift = DEFAULT_SEABED_LENGTH
+            agr = agreement(b.profile, v.profile, reference_depth(resolve(name), b.summary()), shift)
+            failed = [r["quantity"] for r in agr if not r["pass"]]
+            text = (f"{len(agr) - len(failed)}/{len(agr)} rows pass"
+                    + (f" (outside: {', '.join(failed)})" if failed else ""))
+            for r in rows[-2:]:
+                r["agreement"] = text
+    df = pd.DataFrame(rows, columns=COLUMNS)
+    df.to_csv(out / "summary.csv", index=False, float_format="%.6g")
+    _report(df, out)
+    return df
+
+
+def _report(df: pd.DataFrame, out: Path) -> None:
+    silent = df[df.outcome == "SILENT FAILURE"]
+    counts = df.outcome.value_counts().to_dict()
+    lines = [
+        "# Hard cases: numerical stability of both methods", "", GENERATED_NOTE, "",
+        f"**{len(silent)} silent failure(s)** in {len(df)} runs "
+        f"({', '.join(f'{k}: {v}' for k, v in sorted(counts.items()))}).", "",
+        "Outcomes: `converged` (met its own test and the checks), `refused` (outside the "
+        "method, said before solving), `no equilibrium` (stopped with evidence that no static "
+        "solution of that form exists), `failed` (stopped with a stated reason), `SILENT "
+        "FAILURE` (NaN, exception, violated equilibrium or growing energy: must never "
+        "appear). Scenes: `verification/scenes/hard/`.", "",
+        md_table(["scene", "method", "outcome", "residual", "time [s]", "agreement"],
+                 [(r.scene, r.method, r.outcome, fmt(r.residual, 3) if r.residual is not None
+                   and not (isinstance(r.residual, float) and math.isnan(r.residual)) else "",
+                   f"{r.wall_time_s:.2f}", r.agreement) for r in df.itertuples()]),
+        "", "## Messages", "",
+    ]
+    for r in df.itertuples():
+        lines.append(f"- `{r.scene}` [{r.method}] {r.outcome}: {r.message}")
+    lines.append("")
+    (out / "report.md").write_text("\n".join(lines))
