@@ -10,7 +10,8 @@ Ends (``scene.ends.kind``):
   angle given, M = 0 there; the suspended length of the first segment is an unknown
   parameter, the TDP tension an output.
 - ``fixed`` with a ``[seabed]`` and the anchor on it (y = 0): the grounded part from the
-  anchor is straight, frictionless and carries the TDP tension; the touchdown position
+  anchor is straight and frictionless, its tension the TDP tension plus the tangential
+  drag of the current at the seabed; the touchdown position
   (i.e. the suspended length of the first segment) is an unknown parameter; M = 0 at the
   touchdown and the hang-off, positions given.
 - ``fixed`` otherwise: pinned-pinned free-hanging line, positions given and M = 0 at both.
@@ -476,10 +477,16 @@ def _profile(prob: _Problem, sol, scene: Scene) -> tuple[Profile, dict]:
                 "no touchdown in the first segment")
     if prob.form == "fixed_seabed" and grounded > 0.0:
         sg = np.linspace(0.0, grounded, max(2, int(math.ceil(grounded / 1.0)) + 1))[:-1]
+        # grounded, straight and frictionless: T' = -f_t (eq. 2 with theta = M = F = 0), so
+        # the tangential drag of the current at the seabed changes the tension linearly
         T0 = c["T"][0]
+        f_t = 0.0
+        if model.speed is not None:
+            V0 = model.drag_factor * float(model.speed(np.array([0.0]))[0])
+            f_t = float(model.c_t[0]) * abs(V0) * V0
         pre = {"s": sg, "x": prob.anchor_xy[0] + sg, "y": np.zeros_like(sg),
                "theta": np.zeros_like(sg), "M": np.zeros_like(sg), "F": np.zeros_like(sg),
-               "T": np.full_like(sg, T0), "kappa": np.zeros_like(sg)}
+               "T": T0 + f_t * (grounded - sg), "kappa": np.zeros_like(sg)}
         c = {k: np.concatenate([pre[k], c[k]]) for k in c}
     # joints are evaluated from both sides; drop stations closer than 1 um
     keep = np.concatenate([[True], np.diff(c["s"]) > 1e-6])

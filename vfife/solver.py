@@ -90,7 +90,9 @@ def make_profile(model: Model, scene: Scene, meta: dict | None = None) -> Profil
     r = model.nodal_results()
     X = model.positions()
     D = model.directors()
-    theta = np.arctan2(D[:, 1], np.hypot(D[:, 0], D[:, 2]))
+    # angle from the horizontal, signed like the planar convention: a tangent pointing
+    # back (towards -x) past the vertical gives an angle above 90 deg
+    theta = np.arctan2(D[:, 1], np.copysign(np.hypot(D[:, 0], D[:, 2]), D[:, 0]))
     return Profile(s=model.mesh.s.copy(), x=X[:, 0], y=X[:, 1], z=X[:, 2], theta=theta,
                    tension=r["tension"], moment=r["moment"], shear=r["shear"],
                    curvature=r["curvature"], tdp_s=_tdp_s(model.mesh.s, X[:, 1], scene),
