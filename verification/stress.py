@@ -138,6 +138,15 @@ def run(out_dir: str | Path = "reports/stress", names: list[str] | None = None, 
             rows.append(row)
             log(f"stress {name} [{method}]: {row['outcome']} ({row['wall_time_s']:.1f} s)")
         b, v = results["bvp"], results["vfife"]
+        if b is None and v is not None and rows[-2]["outcome"] == "no equilibrium":
+            sc = resolve(name)
+            vs = v.summary()
+            evidence = (f" | VFIFE finds an equilibrium outside the BVP's form: touchdown "
+                        f"x = {vs['tdp_x']:.1f} m")
+            if sc.ends.kind == "fixed":
+                evidence += f" (anchor at x = {sc.ends.anchor[0]:g} m)"
+            evidence += f", minimum tension {vs['min_tension'] / 1e3:.1f} kN"
+            rows[-2]["message"] += evidence
         if b is not None and v is not None:
             shift = 0.0
             note = v.info.get("ends_conversion")
