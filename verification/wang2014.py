@@ -56,9 +56,15 @@ def paper_values(v: float) -> dict:
 def quantities(result) -> dict:
     """The Table 2 quantities of a converged BVP result."""
     sm = result.summary()
+    return table2_quantities(sm, sm["first_segment_suspended_length"])
+
+
+def table2_quantities(sm: dict, s_l: float) -> dict:
+    """Table 2 quantities from a summary; ``s_l`` is the suspended length of the first
+    segment [m]; X is the span from the touchdown to the hang-off."""
     return {
-        "S_L": sm["first_segment_suspended_length"],
-        "X": sm["span"],
+        "S_L": s_l,
+        "X": sm["hang_off_x"] - sm["tdp_x"],
         "Y_arch": sm["crests"][0]["height"] if sm["crests"] else None,
         "Y_sag": sm["sags"][0]["height"] if sm["sags"] else None,
         "T_TDP": sm["tdp_tension"],
@@ -101,19 +107,7 @@ def vfife_quantities(scene: Scene, bvp_result, element_length: float | None = No
     if not res.converged:
         raise RuntimeError(f"vfife on {scene.name}: {res.message}")
     v = res.summary()
-    return {
-        "S_L": first + extra - v["tdp_s"],
-        "X": v["hang_off_x"] - v["tdp_x"],
-        "Y_arch": v["crests"][0]["height"] if v["crests"] else None,
-        "Y_sag": v["sags"][0]["height"] if v["sags"] else None,
-        "T_TDP": v["tdp_tension"],
-        "T_max": v["max_tension"],
-        "M_max": v["max_moment"],
-        "F_max": v["max_shear"],
-        "hang_off_height": v["hang_off_height"],
-        "hang_off_angle_deg": v["hang_off_angle_deg"],
-        "_wall_time_s": res.wall_time_s,
-    }
+    return {**table2_quantities(v, first + extra - v["tdp_s"]), "_wall_time_s": res.wall_time_s}
 
 
 def run(out_dir: str | Path = "reports/wang2014", log=print, methods=("bvp", "vfife")) -> pd.DataFrame:
