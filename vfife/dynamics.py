@@ -12,7 +12,7 @@ with a zero-speed current: the effect is then pure hydrodynamic damping; without
 
 Outputs at every ``output_interval``: time, hang-off tension and position, peak moment
 and its arc length; envelopes of tension and moment along s sampled every
-``envelope_interval`` (min(output_interval, period / 40)); node positions and velocities
+``envelope_interval`` (the output interval divided by the smallest whole number that makes it <= period / 40); node positions and velocities
 at the output times go to ``states.npz`` (arrays t (k,), s (n,), x (k, n, 3), v (k, n, 3)).
 """
 
@@ -96,7 +96,10 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
         dt, limit = float(vf["time_step"]), "user ([vfife] time_step)"
     tm = dyn.top_motion
     out_dt = dyn.output_interval
-    env_dt = out_dt if tm is None or tm.times is not None else min(out_dt, tm.period / 40.0)
+    env_dt = out_dt
+    if tm is not None and tm.times is None:
+        # envelope sampling at <= period/40, an exact divisor of the output interval
+        env_dt = out_dt / math.ceil(out_dt / min(out_dt, tm.period / 40.0) - 1e-9)
     nsub = max(1, int(math.ceil(env_dt / dt - 1e-9)))
     dt = env_dt / nsub                       # step divides the sampling interval exactly
     n_env = int(round(dyn.duration / env_dt))
