@@ -14,7 +14,7 @@ from pathlib import Path
 from riser.errors import SceneError, UnsupportedSceneError
 
 METHODS = ("bvp", "vfife")
-STUDIES = ("wang2014", "yu2021", "compare")
+STUDIES = ("wang2014", "yu2021", "compare", "stress", "cost")
 # scenes with a cross-method comparison report in reports/compare/ (reproduce compare|all)
 COMPARE_SCENES = ("wang2014-baseline", "wang2014-current-neg1p5", "wang2014-current-neg0p75",
                   "wang2014-current-0p75", "wang2014-current-1p5", "scr-steel",
@@ -106,6 +106,12 @@ def cmd_reproduce(args) -> int:
                 compare.write(comp, out / scene_name)
                 print(f"compare {scene_name}: {'PASS' if comp.passed else 'FAIL'} "
                       f"({time.perf_counter() - t1:.1f} s)")
+        elif name == "stress":
+            from . import stress
+            stress.run(out)
+        elif name == "cost":
+            from . import cost
+            cost.run(out)
         print(f"{name}: wrote {out}/ in {time.perf_counter() - t0:.1f} s")
     from .index import write_index
     if base is None:
@@ -172,6 +178,18 @@ def cmd_bench(args) -> int:
     return 0
 
 
+def cmd_cost(args) -> int:
+    from . import cost
+    from .catalog import resolve
+    scene = resolve(args.scene)
+    out = Path(args.out) if args.out else Path("reports") / "cost" / scene.name
+    st = cost.study(scene, repeats=args.repeats, quick=args.quick)
+    cost.write(st, out)
+    print(f"{scene.name}: cost study of {len(st.runs)} runs in {st.elapsed_s:.0f} s; "
+          f"wrote {out}/runs.csv, report.md")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="riser-verify", description=(
         "Dual-method verification suite for deepwater risers (VFIFE and BVP)."))
@@ -207,6 +225,14 @@ def build_parser() -> argparse.ArgumentParser:
     s = sub.add_parser("bench", help="VFIFE kernel and solver benchmark")
     s.add_argument("--out", help="output directory (default reports/bench)")
     s.set_defaults(func=cmd_bench)
+    s = sub.add_parser("cost", help="accuracy-versus-cost study of both methods on a scene")
+    s.add_argument("scene", help="built-in scene name or path to a .toml scene file")
+    s.add_argument("--out", help="output directory (default reports/cost/SCENE)")
+    s.add_argument("--repeats", type=int, default=3,
+                   help="timed runs per setting (median; default 3)")
+    s.add_argument("--quick", action="store_true",
+                   help="coarse subset of settings (development)")
+    s.set_defaults(func=cmd_cost)
     return p
 
 
