@@ -201,6 +201,48 @@ def drag_forces_2d(X, V, D, cdn, cdt, heights, speeds, cdir, Fn):
         Fn[1, i] = cdn[i] * un * uny + ft * dy
 
 
+# ============================================================================ axial dashpot
+# Statics only: a dashpot per element on the elongation rate, N_d = eta (e . (v_b - v_a)),
+# stiffness-proportional damping of the axial modes (eta = beta EA/l0, see
+# :mod:`vfife.statics`). A separate pass (as the drag) so that the elastic element pass and
+# the dynamics are untouched; the node pass adds its forces after measuring the
+# out-of-balance force, so the residual is the elastic + external force only and the
+# dashpot, which vanishes at rest, cannot change the equilibrium.
+@njit(**_JIT)
+def dashpot_pass(x, y, z, vx, vy, vz, eta, q0, q1, q2):
+    """Axial dashpot forces (3D): q (ne,) rows = force of element e on its node a [N]
+    (node b receives -q); eta (ne,) [N s/m]; velocities lagged half a step (explicit)."""
+    ne = eta.shape[0]
+    for e in range(ne):
+        dx = x[e + 1] - x[e]
+        dy = y[e + 1] - y[e]
+        dz = z[e + 1] - z[e]
+        il = 1.0 / math.sqrt(dx * dx + dy * dy + dz * dz)
+        ex = dx * il
+        ey = dy * il
+        ez = dz * il
+        nd = eta[e] * (ex * (vx[e + 1] - vx[e]) + ey * (vy[e + 1] - vy[e])
+                       + ez * (vz[e + 1] - vz[e]))
+        q0[e] = nd * ex
+        q1[e] = nd * ey
+        q2[e] = nd * ez
+
+
+@njit(**_JIT)
+def dashpot_pass_2d(x, y, vx, vy, eta, q0, q1):
+    """Planar version of :func:`dashpot_pass`."""
+    ne = eta.shape[0]
+    for e in range(ne):
+        dx = x[e + 1] - x[e]
+        dy = y[e + 1] - y[e]
+        il = 1.0 / math.sqrt(dx * dx + dy * dy)
+        ex = dx * il
+        ey = dy * il
+        nd = eta[e] * (ex * (vx[e + 1] - vx[e]) + ey * (vy[e + 1] - vy[e]))
+        q0[e] = nd * ex
+        q1[e] = nd * ey
+
+
 # ============================================================================ node pass
 # Pass 2 in one loop over the nodes: gather the element forces and moments, add weight,
 # seabed contact and the drag of the separate drag pass, and update translation and
@@ -244,13 +286,15 @@ def _rotate_3d(i, dx, dy, dz, wx, wy, wz, px, py, pz, jinv, jrot, dt, c1, c2):
 @njit(**_JIT)
 def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a2,
               b0, b1, b2, wload, mass, im, imd, jinv, jrot, trib, kseabed, cseabed, mu, vfric,
-              use_seabed, fd0, fd1, fd2, use_drag, dt, c):
+              use_seabed, fd0, fd1, fd2, use_drag, qd0, qd1, qd2, use_dashpot, dt, c):
     """Fused node pass (3D): nodal force = f[i] - f[i-1] - weight (+ seabed, + drag),
     moment = a[i] + b[i-1]; central-difference update of the translations of nodes
     1..n-2 (added mass normal to the director: im = 1/(m + ma), imd = 1/m - im) and of
     the rotations of every node. All arrays are (n,) or (ne,) rows; fd0..fd2 (n,) the drag
     forces of :func:`drag_forces` (read only when use_drag: the drag's current profile
-    lookup in this loop would stop its vectorisation, +2 ns per element-step).
+    lookup in this loop would stop its vectorisation, +2 ns per element-step); qd0..qd2
+    (ne,) the axial dashpot forces of :func:`dashpot_pass` (statics, read only when
+    use_dashpot; added after the residual is measured).
     Returns (max squared free-node force [N2], max squared moment [N2 m2], 2 x KE [J])."""
     n = x.shape[0]
     c1 = 1.0 - 0.5 * c * dt
@@ -290,6 +334,10 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
             gz += fd2[i]
         r = gx * gx + gy * gy + gz * gz
         rmax = max(r, rmax)
+        if use_dashpot:                   # after the residual: not an out-of-balance force
+            gx += qd0[i] - qd0[i - 1]
+            gy += qd1[i] - qd1[i - 1]
+            gz += qd2[i] - qd2[i - 1]
         fd = (gx * ex + gy * ey + gz * ez) * imd[i]
         ux = (c1 * ux + dt * (gx * im[i] + fd * ex)) * c2
         uy = (c1 * uy + dt * (gy * im[i] + fd * ey)) * c2
@@ -310,9 +358,10 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
 
 @njit(**_JIT)
 def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, jinv, jrot, trib,
-                 kseabed, cseabed, mu, vfric, use_seabed, fd0, fd1, use_drag, dt, c):
+                 kseabed, cseabed, mu, vfric, use_seabed, fd0, fd1, use_drag, qd0, qd1,
+                 use_dashpot, dt, c):
     """Planar version of :func:`node_pass` (w (n,) rotation rate about z, a0, b0 (ne,)
-    moments about z, cdir (2,))."""
+    moments about z, cdir (2,), qd0, qd1 (ne,) dashpot forces)."""
     n = x.shape[0]
     c1 = 1.0 - 0.5 * c * dt
     c2 = 1.0 / (1.0 + 0.5 * c * dt)
@@ -351,6 +400,9 @@ def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, 
             gy += fd1[i]
         r = gx * gx + gy * gy
         rmax = max(r, rmax)
+        if use_dashpot:                   # after the residual: not an out-of-balance force
+            gx += qd0[i] - qd0[i - 1]
+            gy += qd1[i] - qd1[i - 1]
         fd = (gx * ex + gy * ey) * imd[i]
         ux = (c1 * ux + dt * (gx * im[i] + fd * ex)) * c2
         uy = (c1 * uy + dt * (gy * im[i] + fd * ey)) * c2
@@ -376,11 +428,13 @@ def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, 
 @njit(**_JIT)
 def run(nsteps, planar, X, V, D, W, F, MA, MB, Fn, Mn, l0, kax, kb, mass, im, imd, jinv,
         jrot, wload, trib, cdn, cdt, heights, speeds, cdir, use_drag, kseabed, cseabed, mu, vfric,
-        use_seabed, dt, c, top0, top_axis, top_disp, tol_f, tol_m, vmax):
+        use_seabed, eta, Q, use_dashpot, dt, c, top0, top_axis, top_disp, tol_f, tol_m, vmax):
     """Advance up to ``nsteps`` explicit steps.
 
     jinv, jrot : (n,) inverse rotational inertia [1/(kg m2)] and the inertia [kg m2].
     Fn : (k, n) scratch for the drag forces; Mn unused (kept for the call signature).
+    eta : (ne,) axial dashpot coefficients [N s/m] and Q (k, ne) scratch for their forces,
+        used only when use_dashpot (statics; see :func:`dashpot_pass`).
     planar : use the planar kernels on rows 0-1 of X, V, D (z untouched) and W[2] as the
         rotation rate; F (2, ne), MA, MB (1, ne), Fn (2, n), Mn (1, n) then.
     top0 (3,) hang-off position at zero displacement; top_axis (3,) unit axis; top_disp
@@ -401,21 +455,25 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, Fn, Mn, l0, kax, kb, mass, im, im
             element_pass_2d(X[0], X[1], D[0], D[1], l0, kax, kb, F[0], F[1], MA[0], MB[0])
             if use_drag:
                 drag_forces_2d(X, V, D, cdn, cdt, heights, speeds, cdir, Fn)
+            if use_dashpot:
+                dashpot_pass_2d(X[0], X[1], V[0], V[1], eta, Q[0], Q[1])
             r2, m2, k1 = node_pass_2d(X[0], X[1], V[0], V[1], D[0], D[1], Wz, F[0], F[1],
                                       MA[0], MB[0], wload, mass, im, imd, jinv, jrot, trib,
                                       kseabed, cseabed, mu, vfric, use_seabed, Fn[0], Fn[1],
-                                      use_drag, dt, c)
+                                      use_drag, Q[0], Q[1], use_dashpot, dt, c)
         else:
             element_pass(X[0], X[1], X[2], D[0], D[1], D[2], l0, kax, kb, F[0], F[1], F[2],
                          MA[0], MA[1], MA[2], MB[0], MB[1], MB[2])
             if use_drag:
                 drag_forces(X, V, D, cdn, cdt, heights, speeds, cdir, Fn)
+            if use_dashpot:
+                dashpot_pass(X[0], X[1], X[2], V[0], V[1], V[2], eta, Q[0], Q[1], Q[2])
             r2, m2, k1 = node_pass(X[0], X[1], X[2], V[0], V[1], V[2], D[0], D[1], D[2],
                                    W[0], W[1], W[2], F[0], F[1], F[2], MA[0], MA[1], MA[2],
                                    MB[0], MB[1], MB[2], wload, mass, im, imd, jinv, jrot,
                                    trib,
                                    kseabed, cseabed, mu, vfric, use_seabed, Fn[0], Fn[1],
-                                   Fn[2], use_drag, dt, c)
+                                   Fn[2], use_drag, Q[0], Q[1], Q[2], use_dashpot, dt, c)
         res = math.sqrt(r2)
         mres = math.sqrt(m2)
         ke = 0.5 * k1

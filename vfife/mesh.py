@@ -171,7 +171,9 @@ def catenary_shape(scene: Scene, s_nodes: np.ndarray, grid_step: float = 1.0):
     D[:, 0] = np.interp(s_nodes, sg, H / T)
     D[:, 1] = np.interp(s_nodes, sg, V / T)
     D /= np.linalg.norm(D, axis=1)[:, None]
+    smid = 0.5 * (s_nodes[1:] + s_nodes[:-1])
     info = {"catenary_misfit_m": err * chord, "catenary_H": H,
+            "element_tension": np.interp(smid, sg, T),
             "catenary_tdp_s": (min(max(params[1], 0.0), 1.0) * L) if on_seabed else None}
     return X, D, info
 
@@ -186,3 +188,42 @@ def interpolate_state(s_from: np.ndarray, X: np.ndarray, s_to: np.ndarray):
     Xn[0] = X[0]
     Xn[-1] = X[-1]
     return Xn, Dn
+
+
+def length_consistent(X: np.ndarray, lengths: np.ndarray, free: np.ndarray | None = None,
+                      iterations: int = 8) -> np.ndarray:
+    """Positions with the element chords of ``X`` (n, 3) re-scaled to exactly ``lengths``
+    (ne,) [m], chained from the anchor X[0], the end kept on X[-1] by small rotations of
+    the chords of the ``free`` elements (minimum-norm, Gauss-Newton).
+
+    Why: a starting shape sampled from a catenary or interpolated from a coarse mesh has
+    chord-length errors ~ (l kappa)^2 / 24 (up to 7 % next to a kink of the coarse
+    touchdown) that cost EA x error of out-of-balance force: nothing for the soft
+    bending, but with a stiff line (EA x100) it starts the relaxation with forces of
+    1e2-1e6 element weights, launches the nodes and excites every mode, so the relaxation
+    takes many more than sqrt(EA) x the steps, or diverges. Elements lying on the seabed
+    are left straight (``free`` False) so that the rotations do not push nodes into it.
+    """
+    X = np.asarray(X, float)
+    L = np.asarray(lengths, float)
+    target = X[-1].copy()
+    t = np.diff(X, axis=0)
+    t /= np.linalg.norm(t, axis=1)[:, None]
+    w = np.ones(len(L)) if free is None else np.asarray(free, float)
+    if not np.any(w > 0.0):
+        w = np.ones(len(L))
+    tol = 1e-13 * float(np.sum(L))
+    for _ in range(iterations):
+        P = X[0] + np.concatenate([np.zeros((1, 3)), np.cumsum(L[:, None] * t, axis=0)])
+        gap = P[-1] - target
+        if float(np.linalg.norm(gap)) <= tol:
+            break
+        wl2 = w * L * L
+        A = np.einsum("e,ij->ij", wl2, np.eye(3)) - np.einsum("e,ei,ej->ij", wl2, t, t)
+        lam = -np.linalg.lstsq(A, gap, rcond=1e-12)[0]
+        phi = (w * L)[:, None] * np.cross(t, lam)
+        t = t + np.cross(phi, t)
+        t /= np.linalg.norm(t, axis=1)[:, None]
+    P = X[0] + np.concatenate([np.zeros((1, 3)), np.cumsum(L[:, None] * t, axis=0)])
+    P[-1] = target
+    return P

@@ -85,7 +85,18 @@ class Model:
         self.MB = np.zeros_like(self.MA)
         self.Fn = np.zeros((k, n))
         self.Mn = np.zeros((self.MA.shape[0], n))
+        # axial dashpot per element [N s/m] (statics only, see vfife.statics; zero and not
+        # run unless set with :meth:`set_axial_dashpot`)
+        self.eta = np.zeros(ne)
+        self.use_dashpot = False
+        self.Q = np.zeros((k, ne))
         self.steps = 0
+
+    def set_axial_dashpot(self, eta) -> None:
+        """Axial dashpot coefficients [N s/m] per element (scalar or (ne,)); all zero turns
+        the dashpot pass off."""
+        self.eta = np.broadcast_to(np.asarray(eta, float), self.l0.shape).copy()
+        self.use_dashpot = bool(np.any(self.eta > 0.0))
 
     # -------------------------------------------------------------- effects
     @property
@@ -134,7 +145,8 @@ class Model:
                           self.cdn, self.cdt, self.heights, self.speeds,
                           self.cdir[:2].copy() if self.planar else self.cdir, self.use_drag,
                           self.kseabed, self.cseabed, self.mu, self.vfric, self.use_seabed,
-                          dt, c, top0, axis, top_disp, tol_f, tol_m, vmax)
+                          self.eta, self.Q, self.use_dashpot, dt, c, top0, axis, top_disp,
+                          tol_f, tol_m, vmax)
         self.steps += int(out[0])
         return out
 

@@ -6,13 +6,44 @@ Scheme ('catenary + coarse-to-fine dynamic relaxation'):
    (:func:`vfife.mesh.catenary_shape`), laid on the seabed up to its touchdown;
 2. relax it on a coarse mesh (``coarse_element_length``, default 10 m) with viscous
    mass-proportional damping;
-3. interpolate (cubic spline in unstretched arc length) to the fine mesh and relax again.
+3. interpolate (cubic spline in unstretched arc length) to the fine mesh and relax again
+   with heavier mass-proportional damping.
 
-Fictitious parts that do not change the equilibrium: the rotational inertia is scaled by
-``rotational_inertia_scale`` (default 4, which makes the step axial-limited), no added
-mass, and the damping c [1/s] is a multiple of the estimated fundamental frequency
-(``STATIC_DAMPING`` x 2 omega_1, overdamped: the catenary start is already close in the
-long modes, the relaxation removes the short-wave bending and seabed errors).
+Both starting shapes are made length-consistent first (:func:`vfife.mesh.length_consistent`:
+every chord exactly l0 (1 + N/EA) with the start's tension N, the hang-off kept by small
+rotations of the suspended chords): sampling a curve at the nodes shortens the chords by
+~(l kappa)^2/24, which costs EA x that strain of force, so a stiff line started with
+1e2-1e6 element weights of out-of-balance force, and took far more than sqrt(EA) x the
+steps (lazy catenary at 2.5 m, EA x100: 20x the steps of EA x1) or diverged.
+
+Fictitious parts that do not change the equilibrium (they only scale the inertia or
+vanish at rest; the out-of-balance force does not count the fictitious damping forces):
+
+- the rotational inertia is scaled by ``rotational_inertia_scale`` (default 4, which
+  makes the step axial-limited); no added mass;
+- mass-proportional damping c [1/s], a multiple of the estimated fundamental frequency
+  omega_1: ``STATIC_DAMPING`` (10) x 2 omega_1 on the coarse mesh (overdamped: the
+  catenary start is already close in the long modes), ``STATIC_DAMPING_FINE`` (30) x
+  2 omega_1 on the fine mesh (its start, the interpolated coarse equilibrium, is wrong
+  mostly in short waves, which decay at c/2: Wang baseline at 1 m, 34k fine steps
+  against 92k with 10 x), except with a current, where the fine mesh stays at
+  ``STATIC_DAMPING``: the drag load changes with the mesh along the whole line, the
+  fine stage must move long modes (decaying at omega^2 / c), and 30 x took 2.5-4x the
+  steps of 10 x (Wang with currents -1.5 to +1.5 m/s at 1 m). (An adaptive c, critical
+  for the motion under way from its Rayleigh quotient, was tried and dropped: it stops on a
+  zero crossing of an underdamped long mode, 2-4 m from the equilibrium on
+  yu2021-a2-sheared, with the force residual below the tolerance);
+- an axial dashpot per element on the elongation rate (stiffness-proportional damping of
+  the axial modes, ``AXIAL_DAMPING`` = 0.1 of critical at the highest axial frequency;
+  :func:`axial_dashpot`), included in the critical step (x (sqrt(1.01) - 0.1) = 0.905).
+  Without it the step count does not scale with EA: the nearly undamped axial modes pile
+  up the round-off of the position updates into a residual floor ~ EA^1.25 (Wang
+  baseline at 1 m, EA x10: stalls at ~2e-3 element weights, never converging).
+
+Programmatic knobs (``scene.vfife`` entries, not in the scene file schema):
+``static_damping``, ``static_damping_fine``, ``static_axial_damping`` (0 turns the
+dashpot off). The relaxation takes ~sqrt(EA) steps (the axial wave sets the step; the
+relaxation time is set by the damping and the transverse modes, not by EA).
 Converged when the largest nodal out-of-balance force (free nodes) is below
 ``tolerance`` x the weight of one element, and the largest nodal moment below the same
 fraction of that weight x the element length.
@@ -25,12 +56,42 @@ import time
 
 import numpy as np
 
-from .mesh import Mesh, build_mesh, catenary_shape, interpolate_state
+from .mesh import Mesh, build_mesh, catenary_shape, interpolate_state, length_consistent
 from .model import Model
 from .timestep import choose_step, critical_steps
 
 #: damping of the relaxation as a multiple of critical damping of the fundamental mode
 STATIC_DAMPING = 10.0
+#: ... starting value on the fine mesh of a mesh sequence
+STATIC_DAMPING_FINE = 30.0
+#: damping ratio of the axial dashpot at the highest axial frequency of the mesh (statics)
+AXIAL_DAMPING = 0.1
+
+
+def axial_dashpot(mesh: Mesh, zeta: float) -> np.ndarray:
+    """Axial dashpot coefficients eta = beta EA/l0 [N s/m] per element (statics only).
+
+    Stiffness-proportional damping of the axial modes, beta = 2 zeta / omega_max: damping
+    ratio ``zeta`` at the highest axial (zig-zag) frequency of the mesh,
+    omega_max = max_i sqrt(2 (k_l + k_r) / m_i), and zeta omega / omega_max below it.
+    Why: with the mass-proportional damping alone (c/2 ~ 0.7 1/s against omega_max ~ 1e4 -
+    1e5 1/s) the axial modes are almost undamped and integrate the round-off of the
+    position updates (ulp(x) ~ 2e-13 m per step) into a force noise
+    ~ 2 EA/l ulp(x) / sqrt(c dt) at every node, which grows like EA^1.25 and stalls the
+    residual above the tolerance for stiff lines (EA x10: ~2e-3 element weights).
+    The dashpot force is eta times the elongation rate: it vanishes at rest and is not
+    counted in the out-of-balance force, so the equilibrium is unchanged. Its explicit
+    (lagged-velocity) force lowers the axial critical step by sqrt(1 + zeta^2) - zeta
+    (see :func:`vfife.timestep.critical_steps`).
+    """
+    if zeta <= 0.0:
+        return np.zeros(mesh.ne)
+    ka = mesh.EA / mesh.l0
+    sa = np.zeros(mesh.n)
+    sa[:-1] += ka
+    sa[1:] += ka
+    om = float(np.max(np.sqrt(2.0 * sa / mesh.lump(mesh.mass_pl))))
+    return 2.0 * zeta / om * ka
 
 
 def fundamental_omega(mesh: Mesh, tension: float) -> float:
@@ -113,11 +174,24 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
     rot_scale = vf.get("rotational_inertia_scale", 4.0)
     max_steps = int(vf.get("max_steps", 5_000_000))
     h_coarse = vf.get("coarse_element_length", 10.0)
+    zeta_a = float(vf.get("static_axial_damping", AXIAL_DAMPING))
+    cfac = float(vf.get("static_damping", STATIC_DAMPING))
+    cfac_fine = float(vf.get("static_damping_fine", STATIC_DAMPING_FINE))
+
     kseabed = scene.seabed.stiffness if scene.seabed is not None else 0.0
-    info: dict = {"static_scheme": "catenary start, dynamic relaxation, mesh sequencing "
-                  f"{h_coarse:g} m -> {element_length:g} m, viscous damping "
-                  f"{STATIC_DAMPING:g} x critical of mode 1, rotational inertia x{rot_scale:g}"}
     stages = [h_coarse, element_length] if h_coarse > 1.5 * element_length else [element_length]
+    damp = (f"{cfac:g} x ({h_coarse:g} m), {cfac_fine:g} x ({element_length:g} m)"
+            if len(stages) > 1 else f"{cfac:g} x")
+    if scene.current is not None and scene.current.max_abs_speed > 0.0:
+        damp = f"{cfac:g} x (with a current)"
+    damp += " critical of mode 1"
+    info: dict = {"static_scheme": "catenary start, dynamic relaxation, mesh sequencing "
+                  f"{h_coarse:g} m -> {element_length:g} m, viscous mass-proportional damping "
+                  f"{damp}, axial dashpot {zeta_a:g} x critical at the "
+                  f"highest axial frequency (stiffness-proportional), rotational inertia "
+                  f"x{rot_scale:g}, length-consistent starting shapes; fictitious inertia "
+                  "and damping only, the equilibrium and the out-of-balance force "
+                  "(fictitious damping not counted) are unchanged"}
     fixed_dt = vf.get("static_time_step")
     model = None
     total_steps = 0
@@ -125,6 +199,7 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
         mesh = build_mesh(scene, h)
         if model is None:
             X, D, cinfo = catenary_shape(scene, mesh.s)
+            Ne = cinfo.pop("element_tension")
             info.update(cinfo)
             tension = cinfo["catenary_H"]
         else:
@@ -135,15 +210,29 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
                 # launches the nodes at > 1 km/s; take the linear interpolation there
                 ylin = np.interp(mesh.s, model.mesh.s, model.X[1])
                 X[:, 1] = np.where(X[:, 1] < 0.0, np.maximum(X[:, 1], ylin), X[:, 1])
+            Nc = model.nodal_results()["element_tension"]
+            sc_mid = 0.5 * (model.mesh.s[1:] + model.mesh.s[:-1])
+            Ne = np.interp(0.5 * (mesh.s[1:] + mesh.s[:-1]), sc_mid, Nc)
+        # element lengths consistent with the tension (stretch l0 (1 + N/EA)): a stiff line
+        # must not start with chord-length errors (see :func:`length_consistent`)
+        free = None
+        if scene.seabed is not None:
+            free = ~((X[:-1, 1] <= 1e-6) & (X[1:, 1] <= 1e-6))
+        X = length_consistent(X, mesh.l0 * (1.0 + Ne / mesh.EA), free)
         new = Model(scene, mesh, rot_scale=rot_scale, added_mass=False, planar=planar)
         new.set_state(X, D)
+        new.set_axial_dashpot(axial_dashpot(mesh, zeta_a))
         # critical steps of the mesh actually relaxed, with its contact spring and damping
+        # and the axial dashpot
         steps = critical_steps(mesh, rot_scale=rot_scale, tension=2.0 * tension,
-                               seabed_stiffness=kseabed, seabed_damping=new.cseabed)
+                               seabed_stiffness=kseabed, seabed_damping=new.cseabed,
+                               axial_damping=new.eta)
         dt, limit = choose_step(steps, safety)
         if fixed_dt is not None:              # expert: fixed step (may exceed the critical)
             dt, limit = float(fixed_dt), "user ([vfife] static_time_step)"
-        c = STATIC_DAMPING * 2.0 * fundamental_omega(mesh, tension)
+        # a single-stage run (no coarse mesh) starts from the catenary: coarse damping
+        cf = cfac_fine if si > 0 and not new.use_drag else cfac
+        c = cf * 2.0 * fundamental_omega(mesh, tension)
         # the coarse stage only provides a starting shape: at most half of the budget
         budget = max_steps - total_steps
         if si < len(stages) - 1:

@@ -14,6 +14,10 @@ M^-1/2 K M^-1/2, exact for a uniform chain):
   explicit (lagged-velocity) force, which lowers the limit of central differences to
   dt < 2 (sqrt(1 + zeta^2) - zeta) / omega with zeta = c_s / (2 m omega)
   (von Neumann analysis of v+ = v + dt (-k x - c v) / m, x+ = x + dt v+);
+- axial dashpot (statics only, eta [N s/m] per element on the elongation rate, explicit on
+  the lagged velocity): the axial zig-zag mode gets the nodal damping 2 (eta_l + eta_r)
+  [N s/m], i.e. zeta = (eta_l + eta_r) / (m_i omega_axial), and the axial limit becomes
+  2 (sqrt(1 + zeta^2) - zeta) / omega_axial (same von Neumann analysis as the contact);
 - Morison drag (explicit, linearised): dt < 2 m_i / (c_dn |u|) with |u| the largest
   expected relative speed.
 
@@ -36,12 +40,15 @@ def damped_factor(zeta):
 
 def critical_steps(mesh: Mesh, *, rot_scale: float, tension: float = 0.0,
                    added_mass: bool = False, seabed_stiffness: float = 0.0,
-                   seabed_damping=0.0, drag_speed: float = 0.0) -> dict:
+                   seabed_damping=0.0, drag_speed: float = 0.0,
+                   axial_damping=0.0) -> dict:
     """Critical time steps [s] of ``mesh`` (dict: axial, rotation, bending, seabed, drag).
 
     seabed_damping : nodal contact damping [N s/m] ((n,) or scalar), as used by the
     kernels (see :attr:`vfife.model.Model.cseabed`); 'seabed' is the transverse limit
     with the contact spring and this damping on this mesh.
+    axial_damping : axial dashpot coefficients eta [N s/m] per element ((ne,) or scalar,
+    statics only); 'axial' then includes its explicit damping.
     """
     m_pl = mesh.mass_pl + (mesh.added_pl if added_mass else 0.0)
     m = mesh.lump(mesh.mass_pl)            # axial direction: no added mass
@@ -61,8 +68,14 @@ def critical_steps(mesh: Mesh, *, rot_scale: float, tension: float = 0.0,
     st = np.zeros(mesh.n)
     st[:-1] += kt_e
     st[1:] += kt_e
+    eta = np.broadcast_to(np.asarray(axial_damping, float), mesh.l0.shape)
+    se = np.zeros(mesh.n)
+    se[:-1] += eta
+    se[1:] += eta
+    om_a = np.sqrt(2.0 * sa / m)
+    zeta_a = se / (m * om_a)
     out = {
-        "axial": float(np.min(2.0 / np.sqrt(2.0 * sa / m))),
+        "axial": float(np.min(2.0 * damped_factor(zeta_a) / om_a)),
         "rotation": float(np.min(2.0 / np.sqrt(sr / J))),
         "bending": float(np.min(2.0 / np.sqrt(st / mt))),
     }
