@@ -111,9 +111,6 @@ def weight_scale(mesh: Mesh) -> float:
     return w if w > 0.0 else 1e-6 * float(np.max(mesh.EA))
 
 
-COARSE_MAX_STEPS = 400_000     # steps of the coarse starting stage at most
-
-
 def relax(model: Model, dt: float, c: float, tol: float, max_steps: int,
           chunk: int = 20000, progress=None, label: str = "") -> dict:
     """Relax ``model`` to equilibrium; returns a dict (steps, residual (relative),
@@ -236,15 +233,11 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
         # a single-stage run (no coarse mesh) starts from the catenary: coarse damping
         cf = cfac_fine if si > 0 and not new.use_drag else cfac
         c = cf * 2.0 * fundamental_omega(mesh, tension)
-        # the coarse stage only provides a starting shape: a 10x looser tolerance and at
-        # most half of the budget (capped: a coarse mesh on a stiff seabed can chatter
-        # long after its shape is good enough to start from)
+        # the coarse stage only provides a starting shape: at most half of the budget
         budget = max_steps - total_steps
-        stage_tol = tolerance
         if si < len(stages) - 1:
-            budget = max(1, min(budget // 2, COARSE_MAX_STEPS))
-            stage_tol = max(10.0 * tolerance, 1e-2)
-        r = relax(new, dt, c, stage_tol, budget, progress=progress, label=f"{h:g} m mesh")
+            budget = max(1, budget // 2)
+        r = relax(new, dt, c, tolerance, budget, progress=progress, label=f"{h:g} m mesh")
         total_steps += r["steps"]
         info.setdefault("stages", []).append({"element_length": h, "elements": mesh.ne,
                                               "time_step": dt, "step_limit": limit,
