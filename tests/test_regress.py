@@ -1,4 +1,4 @@
-"""Stored summaries of every built-in scene (verification/regression/*.json), both methods.
+"""Stored summaries of every built-in scene (the hard cases excepted: see test_stress.py) (verification/regression/*.json), both methods.
 
 The store is regenerated only by `riser-verify regress --update`; a change in any solver
 output beyond the tolerances in verification/regress.py fails here, naming the scene,
@@ -13,9 +13,7 @@ import json
 import pytest
 
 from verification import regress
-from verification.catalog import builtin_paths
-
-SCENES = sorted(builtin_paths())
+SCENES = sorted(regress.regression_scenes())
 
 
 @pytest.mark.parametrize("name", SCENES)
