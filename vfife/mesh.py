@@ -170,6 +170,14 @@ def catenary_shape(scene: Scene, s_nodes: np.ndarray, grid_step: float = 1.0):
     D = np.zeros_like(X)
     D[:, 0] = np.interp(s_nodes, sg, H / T)
     D[:, 1] = np.interp(s_nodes, sg, V / T)
+    if scene.seabed is not None:
+        # the EI = 0 catenary of a buoyant line can dip below the seabed (a second
+        # touchdown): start those nodes on the seabed, lying flat, instead of metres deep
+        # in a stiff penalty spring (which launched them at step 1)
+        below = X[:, 1] < 0.0
+        X[below, 1] = 0.0
+        D[below, 1] = 0.0
+        D[below, 0] = np.where(D[below, 0] == 0.0, 1.0, D[below, 0])
     D /= np.linalg.norm(D, axis=1)[:, None]
     smid = 0.5 * (s_nodes[1:] + s_nodes[:-1])
     info = {"catenary_misfit_m": err * chord, "catenary_H": H,
