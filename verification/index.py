@@ -60,7 +60,15 @@ def write_index(reports: Path = Path("reports")) -> Path:
             rows.append((f"[{rel}]({rel}/report.md)", *_compare(d)))
         elif (d / "summary.csv").exists() and (d / "report.md").exists():
             df = pd.read_csv(d / "summary.csv")
-            rows.append((f"[{rel}]({rel}/report.md)", f"{len(df)} rows", "see report", ""))
+            silent = int((df.outcome == "SILENT FAILURE").sum())
+            counts = ", ".join(f"{k} {v}" for k, v in sorted(df.outcome.value_counts().items()))
+            rows.append((f"[{rel}]({rel}/report.md)", f"{df.scene.nunique()} scenes x 2 methods",
+                         f"{silent} silent failures ({counts})", "pass" if not silent else "fail"))
+        elif (d / "runs.csv").exists() and (d / "report.md").exists():
+            df = pd.read_csv(d / "runs.csv")
+            conv = df["converged"].astype(bool).sum() if "converged" in df else len(df)
+            rows.append((f"[{rel}]({rel}/report.md)", f"{len(df)} runs ({conv} converged)",
+                         "accuracy vs cost: see the recommendation table", "reported"))
     text = "\n".join([
         "# Verification reports", "", GENERATED_NOTE, "",
         "Regenerate everything with `riser-verify reproduce all`. Each line: the study, its "
