@@ -378,6 +378,9 @@ def _solve_with_continuation(prob: _Problem, tau0: np.ndarray, settings: dict,
         sol = _run(prob, tau0, Y0, prob.guess_p, settings)
         if _good(sol, prob):
             return sol, "cold start from catenary (full node cap)"
+    if "mesh nodes" in sol.message and trial["max_nodes"] >= settings["max_nodes"]:
+        return sol, (f"the node cap max_nodes = {settings['max_nodes']} is too small for "
+                     f"tolerance {settings['tolerance']:g}; raise [bvp] max_nodes")
     if not continuation:
         return sol, "cold start only"
     model = prob.model
