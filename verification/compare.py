@@ -25,9 +25,7 @@ from scipy.spatial import cKDTree
 from riser.profile import Profile, summarize
 from riser.scene import Scene
 
-from riser.transform import fixed_ends_scene
-
-from .equivalence import DEFAULT_SEABED_LENGTH
+from .equivalence import DEFAULT_SEABED_LENGTH, fixed_ends_from_bvp
 from .report import GENERATED_NOTE, fmt, md_table, new_figure, pct, save
 from .tolerances import tolerance_value
 
@@ -191,10 +189,7 @@ def compare(scene: Scene, *, element_length: float | None = None, sensitivity: b
     if scene.ends.kind == "fixed":
         vf_scene, s_shift = scene, 0.0
     else:
-        vf_scene = fixed_ends_scene(scene, (sb["hang_off_x"], sb["hang_off_height"]),
-                                    seabed_length,
-                                    first_segment_length=sb["first_segment_suspended_length"],
-                                    element_length=element_length)
+        vf_scene = fixed_ends_from_bvp(scene, b, seabed_length, element_length)
         s_shift = seabed_length
         notes.append(
             f"The scene's `{scene.ends.kind}` ends were converted for VFIFE: hang-off fixed at the "

@@ -16,6 +16,26 @@ from riser.transform import fixed_ends_scene
 DEFAULT_SEABED_LENGTH = 300.0
 
 
+def fixed_ends_from_bvp(scene: Scene, bvp_result, seabed_length: float = DEFAULT_SEABED_LENGTH,
+                        element_length: float | None = None) -> Scene:
+    """The fixed-ends equivalent of a converged BVP result of ``scene``: hang-off at the
+    BVP top point, ``seabed_length`` [m] of line added to segments[0] on a near-rigid
+    seabed ahead of the BVP touchdown (anchor at x = -seabed_length, y = 0)."""
+    sm = bvp_result.summary()
+    return fixed_ends_scene(scene, (sm["hang_off_x"], sm["hang_off_height"]), seabed_length,
+                            first_segment_length=sm["first_segment_suspended_length"],
+                            element_length=element_length)
+
+
+def fixed_ends_note(scene: Scene, fixed: Scene, seabed_length: float) -> str:
+    """One sentence saying how ``scene`` was converted into ``fixed``."""
+    xh, yh = fixed.ends.hang_off
+    return (f"{scene.ends.kind} ends converted to fixed ends: hang-off at the BVP top point "
+            f"({xh:.3f}, {yh:.3f}) m, anchor on a seabed of stiffness "
+            f"{fixed.seabed.stiffness:.3g} N/m2 {seabed_length:g} m ahead of the BVP "
+            f"touchdown (that much line added to segments[0])")
+
+
 def fixed_ends_via_bvp(scene: Scene, seabed_length: float = DEFAULT_SEABED_LENGTH,
                        element_length: float | None = None):
     """Solve ``scene`` with the BVP and return (fixed-ends scene, note for the summary)."""
@@ -24,13 +44,5 @@ def fixed_ends_via_bvp(scene: Scene, seabed_length: float = DEFAULT_SEABED_LENGT
     if not res.converged:
         raise RuntimeError(f"cannot build the fixed-ends scene: the BVP did not converge "
                            f"({res.message})")
-    sm = res.summary()
-    fixed = fixed_ends_scene(scene, (sm["hang_off_x"], sm["hang_off_height"]), seabed_length,
-                             first_segment_length=sm["first_segment_suspended_length"],
-                             element_length=element_length)
-    note = (f"{scene.ends.kind} ends converted to fixed ends: hang-off at the BVP top point "
-            f"({sm['hang_off_x']:.3f}, {sm['hang_off_height']:.3f}) m, anchor on a seabed of "
-            f"stiffness {fixed.seabed.stiffness:.3g} N/m2 "
-            f"{seabed_length:g} m ahead of the BVP touchdown (that much line added to "
-            f"segments[0])")
-    return fixed, note
+    fixed = fixed_ends_from_bvp(scene, res, seabed_length, element_length)
+    return fixed, fixed_ends_note(scene, fixed, seabed_length)

@@ -97,12 +97,10 @@ def vfife_quantities(scene: Scene, bvp_result, element_length: float | None = No
     """The Table 2 quantities from VFIFE on the fixed-ends equivalent of a BVP result
     (hang-off at the BVP top point, 300 m of line on a near-rigid seabed ahead)."""
     import vfife
-    from riser.transform import fixed_ends_scene
-    from .equivalence import DEFAULT_SEABED_LENGTH as extra
+    from .equivalence import DEFAULT_SEABED_LENGTH as extra, fixed_ends_from_bvp
     sm = bvp_result.summary()
     first = sm["first_segment_suspended_length"]
-    fixed = fixed_ends_scene(scene, (sm["hang_off_x"], sm["hang_off_height"]), extra,
-                             first_segment_length=first, element_length=element_length)
+    fixed = fixed_ends_from_bvp(scene, bvp_result, extra, element_length)
     res = vfife.solve(fixed, **({"element_length": element_length} if element_length else {}))
     if not res.converged:
         raise RuntimeError(f"vfife on {scene.name}: {res.message}")
