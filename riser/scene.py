@@ -484,6 +484,8 @@ def _read_vfife(t: Table) -> dict:
         # statics: fixed relaxation step [s] instead of safety x critical step (expert use;
         # above the critical step the relaxation diverges and says so)
         "static_time_step": t.number("static_time_step", None, gt=0.0, le=10.0, unit="s"),
+        # ends whose rotation is clamped (default: both pinned, moment-free)
+        "clamped_ends": t.strings("clamped_ends", None, choices=("bottom", "top")),
     }
     t.finish()
     return {k: v for k, v in out.items() if v is not None}

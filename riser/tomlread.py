@@ -126,6 +126,27 @@ class Table:
             out.append(check_number(item, self.error, f"{name}[{i}]", **bounds))
         return tuple(out)
 
+    def strings(self, name: str, default: Any = MISSING, *,
+                choices: tuple[str, ...] | None = None, unique: bool = True) -> Any:
+        """A list of strings, each one of ``choices`` (if given), without repeats."""
+        value = self._raw(name, default)
+        if value is default and name not in self.data:
+            return value
+        allowed = f" (allowed: {', '.join(repr(c) for c in choices)})" if choices else ""
+        if not isinstance(value, list):
+            raise self.error(name, f"must be an array of strings{allowed}, got "
+                             f"{_type_name(value)}")
+        for i, item in enumerate(value):
+            if not isinstance(item, str):
+                raise self.error(f"{name}[{i}]", f"must be a string{allowed}, got "
+                                 f"{_type_name(item)}")
+            if choices is not None and item not in choices:
+                raise self.error(f"{name}[{i}]", f"must be one of "
+                                 f"{', '.join(repr(c) for c in choices)}, got {item!r}")
+            if unique and item in value[:i]:
+                raise self.error(f"{name}[{i}]", f"{item!r} given twice")
+        return tuple(value)
+
     def table(self, name: str, required: bool = False) -> "Table | None":
         self._used.add(name)
         if name not in self.data:

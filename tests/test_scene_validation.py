@@ -656,3 +656,26 @@ def test_wang_submerged_weight_by_hand():
     assert props[0].weight == pytest.approx(525.48, abs=0.01)
     assert props[1].weight == pytest.approx(-525.48, abs=0.01)     # weight_scale = -1
     assert props[2].weight == pytest.approx(525.48, abs=0.01)
+
+
+@pytest.mark.parametrize("value,path,hint", [
+    ('["middle"]', "vfife.clamped_ends[0]", "must be one of 'bottom', 'top', got 'middle'"),
+    ('"bottom"', "vfife.clamped_ends", "must be an array of strings (allowed: 'bottom', 'top')"),
+    ('[1]', "vfife.clamped_ends[0]", "must be a string (allowed: 'bottom', 'top')"),
+    ('["top", "top"]', "vfife.clamped_ends[1]", "'top' given twice"),
+])
+def test_clamped_ends_validation(value, path, hint):
+    # protects: [vfife] clamped_ends takes only "bottom" / "top", one line naming the key
+    msg = load_error(FIXED + f"\n[vfife]\nclamped_ends = {value}\n"
+                     if "[vfife]" not in FIXED else
+                     FIXED.replace("[vfife]\n", f"[vfife]\nclamped_ends = {value}\n"))
+    assert msg.startswith(f"{SRC}: {path}: "), msg
+    assert hint in msg, msg
+
+
+def test_clamped_ends_accepted():
+    # protects: the valid forms load (default: none clamped)
+    text = (FIXED.replace("[vfife]\n", '[vfife]\nclamped_ends = ["bottom", "top"]\n')
+            if "[vfife]" in FIXED else FIXED + '\n[vfife]\nclamped_ends = ["bottom", "top"]\n')
+    assert parse_scene(text, SRC).vfife["clamped_ends"] == ("bottom", "top")
+    assert "clamped_ends" not in parse_scene(FIXED, SRC).vfife

@@ -19,8 +19,11 @@ i.e. the cubic beam's end moments M_a = EI/l0 (4 phi_a + 2 phi_b), M_b = EI/l0 (
 + 4 phi_b), and the nodal forces and moments are its exact gradient, so the internal
 forces are conservative and vanish under any rigid-body motion. The shear follows from
 element equilibrium (the transverse part of the force pair). Torsion: for an isotropic
-round pipe without distributed torque and with moment-free (pinned) ends the torsional
-moment is zero everywhere (Kirchhoff), so the twist DOF is not integrated (GJ unused).
+round pipe without distributed torque and with ends free to twist the torsional moment
+is zero everywhere (Kirchhoff), so the twist DOF is not integrated (GJ unused). Ends are
+pinned (moment-free) unless ``[vfife] clamped_ends`` fixes their rotation: jinv = 0 at
+that node, so its director keeps its starting direction and the end element's bending is
+measured against it.
 
 Integration: explicit central differences with mass-proportional damping ``c`` [1/s]:
 ``v+ = ((1 - c dt/2) v + dt a) / (1 + c dt/2)``, ``x+ = x + dt v+``; directors are
@@ -37,12 +40,29 @@ from __future__ import annotations
 
 import math
 
+import llvmlite.binding as _llvm
 import numpy as np
 from numba import njit
 
 # No 'nnan'/'ninf' fast-math flags: the blow-up checks rely on NaN comparisons.
+# _NOWRAP: loops that read and write the same array index it with an unsigned integer
+# (np.uint64): Numba wraps signed indices (a[-1]) with a select that LLVM cannot remove
+# (no nsw on the range counter), which makes the addresses non-affine and stops the
+# vectoriser ("unsafe indirect dependence"); unsigned indices are not wrapped. Mixed
+# uint64/int64 arithmetic gives float64 in Numba, so offsets are uint64 too (``one``).
 _FM = {"contract", "arcp", "reassoc", "nsz"}
 _JIT = dict(cache=True, error_model="numpy", fastmath=_FM, nogil=True)
+# Vectorising the node passes: they read ~25 and write ~7 separate arrays, and since
+# Numba cannot tell LLVM that the arrays do not overlap, the vectoriser guards the SIMD
+# loop with a runtime overlap check per pair of pointers; above its default limit of 8
+# checks it gives up ("too many memory checks needed") and the node passes stayed scalar
+# (5.9 ns of the 16.9 ns per element-step 3D + drag). Raising the limits lets it emit the
+# checks (a few hundred compares per call, against ~3,000 nodes per loop): the results
+# are the same (the checks fall back to the scalar loop if arrays ever overlapped). The
+# options are process-wide LLVM settings that only allow more runtime checks; they must
+# be set before the kernels are compiled (cache=True stores the vectorised code).
+_llvm.set_option("", "-runtime-memory-check-threshold=1000")
+_llvm.set_option("", "-vectorize-memory-check-threshold=1000")
 
 
 # ============================================================================ 3D
@@ -124,31 +144,23 @@ def current_speed(y, heights, speeds):
 
 
 @njit(**_JIT)
-def drag_forces(X, V, D, cdn, cdt, heights, speeds, cdir, Fn):
-    """Morison drag on the velocity relative to the current, written to Fn (3, n) [N].
-
-    u = U(y) cdir - v; normal part u_n = u - (u.d) d, tangential u_t = u.d;
-    f = cdn |u_n| u_n + cdt |u_t| u_t d with cdn, cdt (n,) = 0.5 rho D C_D x tributary
-    length [kg/m] (cdt uses the perimeter, pi D).
-    """
-    n = X.shape[1]
+def current_pass(y, heights, speeds, slopes, U):
+    """Current speed U[i] [m/s] at every node height y[i] [m], the same piecewise-linear
+    profile as :func:`current_speed` written branch-free as a sum of clamped ramps,
+    U = speeds[0] + sum_j slopes[j] (clip(y, h_j, h_j+1) - h_j), slopes[j] =
+    (speeds[j+1] - speeds[j]) / (h_j+1 - h_j), so that the loop over the nodes vectorises
+    (the search loop of :func:`current_speed` per node does not; equal to it to round-off).
+    A single height (uniform current) is a fill."""
+    n = y.shape[0]
+    s0 = speeds[0]
     for i in range(n):
-        u = current_speed(X[1, i], heights, speeds)
-        dx = D[0, i]
-        dy = D[1, i]
-        dz = D[2, i]
-        ux = u * cdir[0] - V[0, i]
-        uy = u * cdir[1] - V[1, i]
-        uz = u * cdir[2] - V[2, i]
-        ut = ux * dx + uy * dy + uz * dz
-        unx = ux - ut * dx
-        uny = uy - ut * dy
-        unz = uz - ut * dz
-        un = math.sqrt(unx * unx + uny * uny + unz * unz)
-        ft = cdt[i] * abs(ut) * ut
-        Fn[0, i] = cdn[i] * un * unx + ft * dx
-        Fn[1, i] = cdn[i] * un * uny + ft * dy
-        Fn[2, i] = cdn[i] * un * unz + ft * dz
+        U[i] = s0
+    for j in range(heights.shape[0] - 1):
+        h0 = heights[j]
+        h1 = heights[j + 1]
+        g = slopes[j]
+        for i in range(np.uint64(n)):           # unsigned: see _NOWRAP
+            U[i] += g * (min(max(y[i], h0), h1) - h0)
 
 
 @njit(**_JIT)
@@ -180,25 +192,6 @@ def element_pass_2d(x, y, dx_, dy_, l0, kax, kb, f0, f1, a0, b0):
         f1[e] = (gy - eg * ey) * il + N * ey
         a0[e] = -(ex * ax + ey * ay) * ma
         b0[e] = -(ex * bx + ey * by) * mb
-
-
-@njit(**_JIT)
-def drag_forces_2d(X, V, D, cdn, cdt, heights, speeds, cdir, Fn):
-    """Planar version of :func:`drag_forces` (cdir (2,) in plane)."""
-    n = X.shape[1]
-    for i in range(n):
-        u = current_speed(X[1, i], heights, speeds)
-        dx = D[0, i]
-        dy = D[1, i]
-        ux = u * cdir[0] - V[0, i]
-        uy = u * cdir[1] - V[1, i]
-        ut = ux * dx + uy * dy
-        unx = ux - ut * dx
-        uny = uy - ut * dy
-        un = math.sqrt(unx * unx + uny * uny)
-        ft = cdt[i] * abs(ut) * ut
-        Fn[0, i] = cdn[i] * un * unx + ft * dx
-        Fn[1, i] = cdn[i] * un * uny + ft * dy
 
 
 # ============================================================================ axial dashpot
@@ -245,16 +238,45 @@ def dashpot_pass_2d(x, y, vx, vy, eta, q0, q1):
 
 # ============================================================================ node pass
 # Pass 2 in one loop over the nodes: gather the element forces and moments, add weight,
-# seabed contact and the drag of the separate drag pass, and update translation and
-# rotation (the nodal resultants are never stored; the bench measured 5.9 -> 5.5 ns planar,
-# 17.3 -> 16.9 ns 3D with drag per element-step against gather + seabed + drag +
-# translation + rotation as five passes). Each node reads only its own old velocity and
-# director, so the order of the updates within the loop does not matter and the scheme is
-# identical to separate passes.
+# seabed contact and the current drag, and update translation and rotation (the nodal
+# resultants are never stored). Each node reads only its own old velocity and director,
+# so the order of the updates within the loop does not matter and the scheme is identical
+# to separate passes. The loop vectorises (AVX-512 on the bench machine) because it holds
+# no max-reduction (LLVM does not vectorise a floating-point max without 'nnan', which
+# the NaN checks forbid): the squared nodal force and moment go to scratch rows R, RM and
+# are reduced by :func:`_max_reduce` only when ``stats`` is set (every step in statics,
+# every 256th and the last step of a call in dynamics). The kinetic energy (a sum,
+# vectorised) is summed every step and carries the NaN check of every step. Together with
+# the unsigned indices (_NOWRAP) and the runtime-check limits above: 3D + drag
+# 16.9 -> 6.6 ns, planar 5.7 -> 3.2 ns per element-step (bench, this machine).
+@njit(**_JIT)
+def _max_reduce(a, i0, i1):
+    """max(a[i0:i1]) of non-negative values (0 for an empty range; a NaN is returned
+    as NaN), in 8 independent lanes (the single running max is latency-bound)."""
+    acc = np.zeros(8)
+    nan = False
+    nb = (i1 - i0) // 8
+    for b in range(nb):
+        for j in range(8):
+            v = a[i0 + 8 * b + j]
+            nan = nan or v != v
+            acc[j] = v if v > acc[j] else acc[j]
+    m = 0.0
+    for j in range(8):
+        m = acc[j] if acc[j] > m else m
+    for i in range(i0 + 8 * nb, i1):
+        v = a[i]
+        nan = nan or v != v
+        m = v if v > m else m
+    return math.nan if nan else m
+
+
 @njit(inline="always", **_JIT)
 def _rotate_3d(i, dx, dy, dz, wx, wy, wz, px, py, pz, jinv, jrot, dt, c1, c2):
     """Rotation update of node i under the moment (px, py, pz); returns (|m_perp|^2,
-    2 x rotational KE). The moment along the director is dropped (no torsion)."""
+    2 x rotational KE). The moment along the director is dropped (no torsion). A clamped
+    node has jinv = 0: its rotation rate stays zero and its director fixed (its moment,
+    the clamp's reaction, is returned as zero: not an out-of-balance moment)."""
     ax = dx[i]
     ay = dy[i]
     az = dz[i]
@@ -280,22 +302,30 @@ def _rotate_3d(i, dx, dy, dz, wx, wy, wz, px, py, pz, jinv, jrot, dt, c1, c2):
     dx[i] = nx
     dy[i] = ny
     dz[i] = nz
-    return px * px + py * py + pz * pz, (qx * qx + qy * qy + qz * qz) * jrot[i]
+    m2 = px * px + py * py + pz * pz
+    return (m2 if ji > 0.0 else 0.0), (qx * qx + qy * qy + qz * qz) * jrot[i]
 
 
 @njit(**_JIT)
 def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a2,
-              b0, b1, b2, wload, mass, im, imd, jinv, jrot, trib, kseabed, cseabed, mu, vfric,
-              use_seabed, fd0, fd1, fd2, use_drag, qd0, qd1, qd2, use_dashpot, dt, c):
+              b0, b1, b2, wload, mass, im, imd, jinv, jrot, kst, cseabed, mu, vfric,
+              U, cdn, cdt, cdir, use_drag, qd0, qd1, qd2, use_dashpot, dt, c, stats, R, RM):
     """Fused node pass (3D): nodal force = f[i] - f[i-1] - weight (+ seabed, + drag),
     moment = a[i] + b[i-1]; central-difference update of the translations of nodes
     1..n-2 (added mass normal to the director: im = 1/(m + ma), imd = 1/m - im) and of
-    the rotations of every node. All arrays are (n,) or (ne,) rows; fd0..fd2 (n,) the drag
-    forces of :func:`drag_forces` (read only when use_drag: the drag's current profile
-    lookup in this loop would stop its vectorisation, +2 ns per element-step); qd0..qd2
-    (ne,) the axial dashpot forces of :func:`dashpot_pass` (statics, read only when
+    the rotations of every node. All arrays are (n,) or (ne,) rows.
+    kst (n,): seabed stiffness x tributary length [N/m] (zeros without a seabed);
+    cseabed (n,): contact damping [N s/m]; mu, vfric: friction coefficient and
+    regularisation speed [m/s].
+    Drag (when use_drag): Morison on the velocity relative to the current, U (n,) the
+    current speed at the nodes (:func:`current_pass`) along the unit heading cdir (3,):
+    u = U cdir - v; normal part u_n = u - (u.d) d, tangential u_t = u.d;
+    f = cdn |u_n| u_n + cdt |u_t| u_t d with cdn, cdt (n,) = 0.5 rho D C_D x tributary
+    length [kg/m] (cdt uses the perimeter, pi D).
+    qd0..qd2 (ne,): axial dashpot forces of :func:`dashpot_pass` (statics, read only when
     use_dashpot; added after the residual is measured).
-    Returns (max squared free-node force [N2], max squared moment [N2 m2], 2 x KE [J])."""
+    Returns (max squared free-node force [N2], max squared moment [N2 m2], 2 x KE [J]);
+    the two maxima are 0 unless ``stats``."""
     n = x.shape[0]
     c1 = 1.0 - 0.5 * c * dt
     c2 = 1.0 / (1.0 + 0.5 * c * dt)
@@ -309,35 +339,47 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
                         jinv, jrot, dt, c1, c2)
     mmax = m2 if m2 > mmax else mmax
     ke += kr
-    ks = kseabed if use_seabed else 0.0
-    for i in range(1, n - 1):
-        gx = f0[i] - f0[i - 1]
-        gy = f1[i] - f1[i - 1] - wload[i]
-        gz = f2[i] - f2[i - 1]
+    cx = cdir[0]
+    cy = cdir[1]
+    cz = cdir[2]
+    one = np.uint64(1)
+    for i in range(one, np.uint64(n - 1)):      # unsigned: see _NOWRAP
+        gx = f0[i] - f0[i - one]
+        gy = f1[i] - f1[i - one] - wload[i]
+        gz = f2[i] - f2[i - one]
         ux = vx[i]
         uy = vy[i]
         uz = vz[i]
         ex = dx[i]
         ey = dy[i]
         ez = dz[i]
-        # seabed (branch-free: ks = 0 without one; keeps the loop vectorisable)
+        # seabed (branch-free: kst = 0 without one; keeps the loop vectorisable)
         pen = min(y[i], 0.0)
-        fn = -ks * trib[i] * pen
+        fn = -kst[i] * pen
         gy += fn - (cseabed[i] * uy if pen < 0.0 else 0.0)
         if mu > 0.0:
             fr = mu * fn / math.sqrt(ux * ux + uz * uz + vfric * vfric)
             gx -= fr * ux
             gz -= fr * uz
-        if use_drag:                      # drag from the separate pass (fd0..fd2)
-            gx += fd0[i]
-            gy += fd1[i]
-            gz += fd2[i]
-        r = gx * gx + gy * gy + gz * gz
-        rmax = max(r, rmax)
+        if use_drag:
+            cu = U[i]
+            rx = cu * cx - ux
+            ry = cu * cy - uy
+            rz = cu * cz - uz
+            rt = rx * ex + ry * ey + rz * ez
+            rnx = rx - rt * ex
+            rny = ry - rt * ey
+            rnz = rz - rt * ez
+            cn = cdn[i] * math.sqrt(rnx * rnx + rny * rny + rnz * rnz)
+            ft = cdt[i] * abs(rt) * rt
+            gx += cn * rnx + ft * ex
+            gy += cn * rny + ft * ey
+            gz += cn * rnz + ft * ez
+        R[i] = gx * gx + gy * gy + gz * gz
         if use_dashpot:                   # after the residual: not an out-of-balance force
-            gx += qd0[i] - qd0[i - 1]
-            gy += qd1[i] - qd1[i - 1]
-            gz += qd2[i] - qd2[i - 1]
+            gx += qd0[i] - qd0[i - one]
+            gy += qd1[i] - qd1[i - one]
+            gz += qd2[i] - qd2[i - one]
         fd = (gx * ex + gy * ey + gz * ez) * imd[i]
         ux = (c1 * ux + dt * (gx * im[i] + fd * ex)) * c2
         uy = (c1 * uy + dt * (gy * im[i] + fd * ey)) * c2
@@ -349,19 +391,23 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
         y[i] += dt * uy
         z[i] += dt * uz
         ke += mass[i] * (ux * ux + uy * uy + uz * uz)
-        m2, kr = _rotate_3d(i, dx, dy, dz, wx, wy, wz, a0[i] + b0[i - 1], a1[i] + b1[i - 1],
-                            a2[i] + b2[i - 1], jinv, jrot, dt, c1, c2)
-        mmax = max(m2, mmax)
+        m2, kr = _rotate_3d(i, dx, dy, dz, wx, wy, wz, a0[i] + b0[i - one], a1[i] + b1[i - one],
+                            a2[i] + b2[i - one], jinv, jrot, dt, c1, c2)
+        RM[i] = m2
         ke += kr
+    if stats:
+        rmax = _max_reduce(R, 1, n - 1)
+        mm = _max_reduce(RM, 1, n - 1)
+        mmax = mm if not mm <= mmax else mmax      # keeps a NaN
     return rmax, mmax, ke
 
 
 @njit(**_JIT)
-def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, jinv, jrot, trib,
-                 kseabed, cseabed, mu, vfric, use_seabed, fd0, fd1, use_drag, qd0, qd1,
-                 use_dashpot, dt, c):
+def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, jinv, jrot,
+                 kst, cseabed, mu, vfric, U, cdn, cdt, cdir, use_drag, qd0, qd1,
+                 use_dashpot, dt, c, stats, R, RM):
     """Planar version of :func:`node_pass` (w (n,) rotation rate about z, a0, b0 (ne,)
-    moments about z, cdir (2,), qd0, qd1 (ne,) dashpot forces)."""
+    moments about z, cdir (2,) in plane, qd0, qd1 (ne,) dashpot forces)."""
     n = x.shape[0]
     c1 = 1.0 - 0.5 * c * dt
     c2 = 1.0 / (1.0 + 0.5 * c * dt)
@@ -380,29 +426,39 @@ def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, 
         inv = 1.5 - 0.5 * (nx * nx + ny * ny)
         dx[i] = nx * inv
         dy[i] = ny * inv
-        mmax = mi * mi if mi * mi > mmax else mmax
+        if jinv[i] > 0.0:                   # a clamp's reaction is not out of balance
+            mmax = mi * mi if mi * mi > mmax else mmax
         ke += q * q * jrot[i]
-    ks = kseabed if use_seabed else 0.0
-    for i in range(1, n - 1):
-        gx = f0[i] - f0[i - 1]
-        gy = f1[i] - f1[i - 1] - wload[i]
+    cx = cdir[0]
+    cy = cdir[1]
+    one = np.uint64(1)
+    for i in range(one, np.uint64(n - 1)):      # unsigned: see _NOWRAP
+        gx = f0[i] - f0[i - one]
+        gy = f1[i] - f1[i - one] - wload[i]
         ux = vx[i]
         uy = vy[i]
         ex = dx[i]
         ey = dy[i]
         pen = min(y[i], 0.0)                  # seabed, branch-free (see node_pass)
-        fn = -ks * trib[i] * pen
+        fn = -kst[i] * pen
         gy += fn - (cseabed[i] * uy if pen < 0.0 else 0.0)
         if mu > 0.0:
             gx -= mu * fn * ux / math.sqrt(ux * ux + vfric * vfric)
-        if use_drag:                      # drag from the separate pass (fd0, fd1)
-            gx += fd0[i]
-            gy += fd1[i]
-        r = gx * gx + gy * gy
-        rmax = max(r, rmax)
+        if use_drag:                          # see node_pass
+            cu = U[i]
+            rx = cu * cx - ux
+            ry = cu * cy - uy
+            rt = rx * ex + ry * ey
+            rnx = rx - rt * ex
+            rny = ry - rt * ey
+            cn = cdn[i] * math.sqrt(rnx * rnx + rny * rny)
+            ft = cdt[i] * abs(rt) * rt
+            gx += cn * rnx + ft * ex
+            gy += cn * rny + ft * ey
+        R[i] = gx * gx + gy * gy
         if use_dashpot:                   # after the residual: not an out-of-balance force
-            gx += qd0[i] - qd0[i - 1]
-            gy += qd1[i] - qd1[i - 1]
+            gx += qd0[i] - qd0[i - one]
+            gy += qd1[i] - qd1[i - one]
         fd = (gx * ex + gy * ey) * imd[i]
         ux = (c1 * ux + dt * (gx * im[i] + fd * ex)) * c2
         uy = (c1 * uy + dt * (gy * im[i] + fd * ey)) * c2
@@ -411,7 +467,7 @@ def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, 
         x[i] += dt * ux
         y[i] += dt * uy
         ke += mass[i] * (ux * ux + uy * uy)
-        mi = a0[i] + b0[i - 1]
+        mi = a0[i] + b0[i - one]
         q = (c1 * w[i] + dt * jinv[i] * mi) * c2
         w[i] = q
         nx = ex - dt * q * ey
@@ -419,29 +475,40 @@ def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, 
         inv = 1.5 - 0.5 * (nx * nx + ny * ny)   # Newton step to |d| = 1 (|dt w| << 1)
         dx[i] = nx * inv
         dy[i] = ny * inv
-        mmax = max(mi * mi, mmax)
+        RM[i] = mi * mi
         ke += q * q * jrot[i]
+    if stats:
+        rmax = _max_reduce(R, 1, n - 1)
+        mm = _max_reduce(RM, 1, n - 1)
+        mmax = mm if not mm <= mmax else mmax      # keeps a NaN
     return rmax, mmax, ke
 
 
 # ============================================================================ driver
 @njit(**_JIT)
-def run(nsteps, planar, X, V, D, W, F, MA, MB, Fn, Mn, l0, kax, kb, mass, im, imd, jinv,
-        jrot, wload, trib, cdn, cdt, heights, speeds, cdir, use_drag, kseabed, cseabed, mu, vfric,
-        use_seabed, eta, Q, use_dashpot, dt, c, top0, top_axis, top_disp, tol_f, tol_m, vmax):
+def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd, jinv,
+        jrot, wload, kst, cdn, cdt, heights, speeds, slopes, cdir, use_drag, cseabed, mu,
+        vfric, eta, Q, use_dashpot, dt, c, top0, top_axis, top_disp, tol_f, tol_m, vmax):
     """Advance up to ``nsteps`` explicit steps.
 
-    jinv, jrot : (n,) inverse rotational inertia [1/(kg m2)] and the inertia [kg m2].
-    Fn : (k, n) scratch for the drag forces; Mn unused (kept for the call signature).
+    jinv, jrot : (n,) inverse rotational inertia [1/(kg m2)] (0 at a clamped end) and the
+        inertia [kg m2].
+    kst : (n,) seabed stiffness x tributary length [N/m] (zeros without a seabed).
+    R : (2, n) scratch for the squared nodal out-of-balance forces and moments.
+    U : (n,) scratch for the current speed at the nodes; heights, speeds, slopes the
+        current profile (see :func:`current_pass`); cdir its unit heading.
     eta : (ne,) axial dashpot coefficients [N s/m] and Q (k, ne) scratch for their forces,
         used only when use_dashpot (statics; see :func:`dashpot_pass`).
     planar : use the planar kernels on rows 0-1 of X, V, D (z untouched) and W[2] as the
-        rotation rate; F (2, ne), MA, MB (1, ne), Fn (2, n), Mn (1, n) then.
+        rotation rate; F (2, ne), MA, MB (1, ne), cdir (2,) then.
     top0 (3,) hang-off position at zero displacement; top_axis (3,) unit axis; top_disp
     (nsteps + 1,) hang-off displacement [m] at the end of each step (entry 0: at the
     start). The anchor (node 0) keeps its position.
     Stops early when the force residual < tol_f and the moment residual < tol_m (negative
     tolerances: never), or on a blow-up (NaN, or a speed above vmax [m/s]).
+    The residuals are measured every step when a tolerance is given (statics), else on
+    every 256th and on the last step (the NaN check of the other steps is on the kinetic
+    energy, which every step sums over all nodes).
     Returns (steps done, force residual [N], moment residual [N m], kinetic energy [J],
     status: 0 all steps done, 1 converged, 2 blow-up).
     """
@@ -450,42 +517,50 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, Fn, Mn, l0, kax, kb, mass, im, im
     mres = 0.0
     ke = 0.0
     Wz = W[2]
+    check = tol_f >= 0.0 or tol_m >= 0.0
+    drag_profile = use_drag and heights.shape[0] > 1
+    if use_drag and not drag_profile:       # uniform current: U never changes
+        current_pass(X[1], heights, speeds, slopes, U)
     for k in range(nsteps):
+        stats = check or (k & 255) == 0 or k == nsteps - 1
+        if drag_profile:
+            current_pass(X[1], heights, speeds, slopes, U)
         if planar:
             element_pass_2d(X[0], X[1], D[0], D[1], l0, kax, kb, F[0], F[1], MA[0], MB[0])
-            if use_drag:
-                drag_forces_2d(X, V, D, cdn, cdt, heights, speeds, cdir, Fn)
             if use_dashpot:
                 dashpot_pass_2d(X[0], X[1], V[0], V[1], eta, Q[0], Q[1])
             r2, m2, k1 = node_pass_2d(X[0], X[1], V[0], V[1], D[0], D[1], Wz, F[0], F[1],
-                                      MA[0], MB[0], wload, mass, im, imd, jinv, jrot, trib,
-                                      kseabed, cseabed, mu, vfric, use_seabed, Fn[0], Fn[1],
-                                      use_drag, Q[0], Q[1], use_dashpot, dt, c)
+                                      MA[0], MB[0], wload, mass, im, imd, jinv, jrot, kst,
+                                      cseabed, mu, vfric, U, cdn, cdt, cdir, use_drag,
+                                      Q[0], Q[1], use_dashpot, dt, c, stats, R[0], R[1])
         else:
             element_pass(X[0], X[1], X[2], D[0], D[1], D[2], l0, kax, kb, F[0], F[1], F[2],
                          MA[0], MA[1], MA[2], MB[0], MB[1], MB[2])
-            if use_drag:
-                drag_forces(X, V, D, cdn, cdt, heights, speeds, cdir, Fn)
             if use_dashpot:
                 dashpot_pass(X[0], X[1], X[2], V[0], V[1], V[2], eta, Q[0], Q[1], Q[2])
             r2, m2, k1 = node_pass(X[0], X[1], X[2], V[0], V[1], V[2], D[0], D[1], D[2],
                                    W[0], W[1], W[2], F[0], F[1], F[2], MA[0], MA[1], MA[2],
                                    MB[0], MB[1], MB[2], wload, mass, im, imd, jinv, jrot,
-                                   trib,
-                                   kseabed, cseabed, mu, vfric, use_seabed, Fn[0], Fn[1],
-                                   Fn[2], use_drag, Q[0], Q[1], Q[2], use_dashpot, dt, c)
-        res = math.sqrt(r2)
-        mres = math.sqrt(m2)
+                                   kst, cseabed, mu, vfric, U, cdn, cdt, cdir, use_drag,
+                                   Q[0], Q[1], Q[2], use_dashpot, dt, c, stats, R[0], R[1])
         ke = 0.5 * k1
         d1 = top_disp[k + 1]
         vt = (d1 - top_disp[k]) / dt
         for j in range(3):
             X[j, n - 1] = top0[j] + d1 * top_axis[j]
             V[j, n - 1] = vt * top_axis[j]
-        if not (res < 1e300 and mres < 1e300 and ke < 1e300):
+        if not ke < 1e300:
+            if stats:
+                res = math.sqrt(r2)
+                mres = math.sqrt(m2)
             return k + 1, res, mres, ke, 2
-        if res < tol_f and mres < tol_m:
-            return k + 1, res, mres, ke, 1
+        if stats:
+            res = math.sqrt(r2)
+            mres = math.sqrt(m2)
+            if not (res < 1e300 and mres < 1e300):
+                return k + 1, res, mres, ke, 2
+            if res < tol_f and mres < tol_m:
+                return k + 1, res, mres, ke, 1
         if (k & 255) == 0:
             for i in range(n):
                 vv = V[0, i] * V[0, i] + V[1, i] * V[1, i] + V[2, i] * V[2, i]

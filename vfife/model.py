@@ -53,6 +53,13 @@ class Model:
         self.im = 1.0 / (self.mass + self.madd)
         self.imd = 1.0 / self.mass - self.im
         self.jrot = rot_scale * mesh.lump(mesh.rot_pl)
+        # clamped ends ([vfife] clamped_ends): no rotation, i.e. infinite rotational
+        # inertia (jinv = 0); the director keeps the direction it has in the state the
+        # model is given (see :meth:`set_state` and the README)
+        self.clamped = tuple(scene.vfife.get("clamped_ends", ()))
+        self.jinv = 1.0 / self.jrot
+        for end in self.clamped:
+            self.jinv[0 if end == "bottom" else -1] = 0.0
         self.wload = mesh.lump(mesh.weight_pl)
         self.trib = mesh.trib
         self.cdn = mesh.lump(mesh.cdn_pl)
@@ -67,9 +74,15 @@ class Model:
             self.heights = np.zeros(1)
             self.speeds = np.zeros(1)
             self.cdir = np.array([1.0, 0.0, 0.0])
+        # current profile slopes (d speed / d height) for the branch-free lookup
+        self.slopes = (np.diff(self.speeds) / np.diff(self.heights) if len(self.heights) > 1
+                       else np.zeros(1))
+        self.U = np.zeros(n)
+        self.R = np.zeros((2, n))       # scratch: squared nodal residuals
         sb = scene.seabed
         self.use_seabed = sb is not None
         self.kseabed = sb.stiffness if sb is not None else 0.0
+        self.kst = self.kseabed * self.trib         # seabed spring per node [N/m]
         self.mu = sb.friction if sb is not None else 0.0
         # contact damping: a fraction zeta of critical for the contact spring, clamped at
         # critical (MAX_CONTACT_ZETA): the explicit damping force shortens the stable step
@@ -83,8 +96,6 @@ class Model:
         self.F = np.zeros((k, ne))
         self.MA = np.zeros((k - 1 if planar else 3, ne))
         self.MB = np.zeros_like(self.MA)
-        self.Fn = np.zeros((k, n))
-        self.Mn = np.zeros((self.MA.shape[0], n))
         # axial dashpot per element [N s/m] (statics only, see vfife.statics; zero and not
         # run unless set with :meth:`set_axial_dashpot`)
         self.eta = np.zeros(ne)
@@ -139,12 +150,12 @@ class Model:
         top0 = self.X[:, -1].copy() if top0 is None else np.asarray(top0, float)
         axis = np.asarray(top_axis, float)
         out = kernels.run(nsteps, self.planar, self.X, self.V, self.D, self.W, self.F,
-                          self.MA, self.MB, self.Fn, self.Mn, self.l0, self.kax, self.kb,
-                          self.mass, self.im, self.imd, 1.0 / self.jrot, self.jrot,
-                          self.wload, self.trib,
-                          self.cdn, self.cdt, self.heights, self.speeds,
+                          self.MA, self.MB, self.U, self.R, self.l0, self.kax, self.kb,
+                          self.mass, self.im, self.imd, self.jinv, self.jrot,
+                          self.wload, self.kst, self.cdn, self.cdt, self.heights,
+                          self.speeds, self.slopes,
                           self.cdir[:2].copy() if self.planar else self.cdir, self.use_drag,
-                          self.kseabed, self.cseabed, self.mu, self.vfric, self.use_seabed,
+                          self.cseabed, self.mu, self.vfric,
                           self.eta, self.Q, self.use_dashpot, dt, c, top0, axis, top_disp,
                           tol_f, tol_m, vmax)
         self.steps += int(out[0])

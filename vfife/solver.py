@@ -36,15 +36,18 @@ def warm_up() -> float:
     for planar in (True, False):
         k = 2 if planar else 3
         one = np.ones(n)
-        kernels.run(2, planar, X.copy(), np.zeros((3, n)), D.copy(), np.zeros((3, n)),
-                    np.zeros((k, n - 1)), np.zeros((k - 1 if planar else 3, n - 1)),
-                    np.zeros((k - 1 if planar else 3, n - 1)), np.zeros((k, n)),
-                    np.zeros((k - 1 if planar else 3, n)), np.ones(n - 1), np.ones(n - 1),
-                    np.ones(n - 1), one, one, one * 0.0, one, one, one, one, one, one,
-                    np.zeros(1), np.ones(1), np.array([1.0, 0.0] if planar else [1.0, 0, 0]),
-                    True, 1.0, one, 0.1, 0.01, True, np.ones(n - 1), np.zeros((k, n - 1)),
-                    False, 1e-3, 0.0, X[:, -1].copy(),
-                    np.array([0.0, 1.0, 0.0]), np.zeros(3), -1.0, -1.0, 1e3)
+        for heights in (np.zeros(1), np.array([0.0, 1.0])):     # uniform and profile
+            kernels.run(2, planar, X.copy(), np.zeros((3, n)), D.copy(), np.zeros((3, n)),
+                        np.zeros((k, n - 1)), np.zeros((k - 1 if planar else 3, n - 1)),
+                        np.zeros((k - 1 if planar else 3, n - 1)), np.zeros(n),
+                        np.zeros((2, n)),
+                        np.ones(n - 1), np.ones(n - 1), np.ones(n - 1), one, one, one * 0.0,
+                        one, one, one, one, one, one, heights, np.ones(heights.shape[0]),
+                        np.zeros(max(1, heights.shape[0] - 1)),
+                        np.array([1.0, 0.0] if planar else [1.0, 0, 0]), True, one, 0.1,
+                        0.01, np.ones(n - 1), np.zeros((k, n - 1)), False, 1e-3, 0.0,
+                        X[:, -1].copy(), np.array([0.0, 1.0, 0.0]), np.zeros(3), -1.0, -1.0,
+                        1e3)
     kernels.element_state(X, D, np.ones(n - 1), np.ones(n - 1), np.ones(n - 1))
     _COMPILED.update(done=True, compile_s=time.perf_counter() - t0)
     return _COMPILED["compile_s"]

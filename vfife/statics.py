@@ -204,6 +204,9 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
             tension = cinfo["catenary_H"]
         else:
             X, D = interpolate_state(model.mesh.s, model.positions(), mesh.s)
+            for end in model.clamped:          # a clamped end keeps its direction
+                j = 0 if end == "bottom" else -1
+                D[j] = model.D[:, j]
             if scene.seabed is not None:
                 # the cubic spline overshoots below the seabed around the touchdown kink
                 # (7 cm from a 10 m mesh): with a stiff seabed (1e10 N/m2) that penetration
