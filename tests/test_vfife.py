@@ -441,15 +441,18 @@ def test_stiff_seabed_converges(k):
     """A stiff seabed (up to 25x the 1 m 'rigid' value 3.9e7 N/m2) converges: the critical
     step includes the contact spring and its damping on the mesh being relaxed, and the
     coarse-to-fine interpolation does not push nodes into the seabed."""
-    res = vfife.solve(stiff_seabed_scene(k), element_length=2.0)
+    # static tolerance 1e-4: at the default 1e-3 the top tension depends on the relaxation
+    # path by ~2e-4 (the stiff contacts relax with fictitious mass and contact damping, the
+    # soft ones not), which would hide the 1e-4 physics comparison below
+    res = vfife.solve(stiff_seabed_scene(k), element_length=2.0, tolerance=1e-4)
     assert res.converged, res.message
-    assert res.info["residual"] < 1e-3
+    assert res.info["residual"] < 1e-4
     p = res.profile
     w = 525.0
     # on the flat part the spring carries the weight: penetration w/k (to the residual
     # tolerance, 1e-3 of an element weight)
     assert -p.y[5] == pytest.approx(w / k, rel=5e-3)
-    ref = vfife.solve(stiff_seabed_scene(1e10), element_length=2.0)
+    ref = vfife.solve(stiff_seabed_scene(1e10), element_length=2.0, tolerance=1e-4)
     assert ref.converged, ref.message
     q = ref.profile
     # the deepest node carries the touchdown point reaction (~18 w/k here): a linear

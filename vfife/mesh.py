@@ -101,15 +101,23 @@ def _cumtrapz(y: np.ndarray, x: np.ndarray) -> np.ndarray:
     return out
 
 
-def catenary_shape(scene: Scene, s_nodes: np.ndarray, grid_step: float = 1.0):
+def catenary_shape(scene: Scene, s_nodes: np.ndarray, grid_step: float = 1.0,
+                   uniform_weight: float | None = None):
     """Multi-segment extensible catenary through the scene's fixed ends (no bending).
 
     With a seabed and the anchor on it (y = 0), the line lies straight on the seabed from
     the anchor to a touchdown arc length s_t, then hangs as a catenary with horizontal
-    force H: V(s) = integral of w from s_t, x' = (1 + T/EA) H/T, y' = (1 + T/EA) V/T.
+    force H: V(s) = integral of w from s_t, x' = (1 + T/EA) H/T, y' = (1 + T/EA) V/T;
+    a line buoyant enough to lift off at the anchor (s_t "negative") has an upward force
+    V(0) > 0 there instead (hard-large-buoyancy: without that branch the fit stopped at
+    s_t = 0 with the end 120 m off the hang-off, and the relaxation diverged at step 1).
     Otherwise the line hangs from the anchor with the unknown vertical force V0 there.
     The two unknowns are found by least squares so the end lands on the hang-off.
-    Returns (X (n, 3), D (n, 3) unit tangents, info dict).
+    ``uniform_weight`` [N/m]: the shape of a line of that uniform submerged weight instead
+    of the scene's (the start of a continuation in the weight, see
+    :func:`vfife.statics.solve_static`).
+    Returns (X (n, 3), D (n, 3) unit tangents, info dict; info 'catenary_below_seabed_m':
+    how far the EI = 0 shape passed below the seabed before it was clamped onto it).
     """
     props = segment_properties(scene)
     a = np.asarray(scene.ends.anchor, float)
@@ -121,7 +129,7 @@ def catenary_shape(scene: Scene, s_nodes: np.ndarray, grid_step: float = 1.0):
     ea = np.empty_like(sg)
     for p in props:
         sel = (sg >= p.s_start - 1e-9)
-        w[sel] = p.weight
+        w[sel] = p.weight if uniform_weight is None else uniform_weight
         ea[sel] = p.EA
     on_seabed = scene.seabed is not None and a[1] <= 1e-9
     W = _cumtrapz(w, sg)          # integral of w from the anchor
@@ -131,10 +139,14 @@ def catenary_shape(scene: Scene, s_nodes: np.ndarray, grid_step: float = 1.0):
 
     def shape(params):
         H = abs(params[0]) * wref * chord
-        if on_seabed:
-            st = min(max(params[1], 0.0), 1.0) * L
+        if on_seabed and params[1] >= 0.0:
+            st = min(params[1], 1.0) * L
             V = W - np.interp(st, sg, W)
             V = np.where(sg < st, 0.0, V)
+        elif on_seabed:
+            # lift-off at the anchor (a strongly buoyant line): an upward force there,
+            # continuous with the touchdown branch at params[1] = 0
+            V = W - params[1] * L * wref
         else:
             V = W + params[1] * wref * chord
         T = np.sqrt(H * H + V * V)
@@ -148,7 +160,8 @@ def catenary_shape(scene: Scene, s_nodes: np.ndarray, grid_step: float = 1.0):
         return np.array([x[-1] - h[0], y[-1] - h[1]]) / chord
 
     best = None
-    guesses_2 = (0.0, 0.1, 0.2, 0.35, 0.5) if on_seabed else (-1.0, -0.3, 0.0, 0.3)
+    guesses_2 = ((0.0, 0.1, 0.2, 0.35, 0.5, -0.05, -0.2) if on_seabed
+                 else (-1.0, -0.3, 0.0, 0.3))
     for g1 in (0.05, 0.2, 0.5, 1.0, 3.0):
         for g2 in guesses_2:
             try:
@@ -170,6 +183,7 @@ def catenary_shape(scene: Scene, s_nodes: np.ndarray, grid_step: float = 1.0):
     D = np.zeros_like(X)
     D[:, 0] = np.interp(s_nodes, sg, H / T)
     D[:, 1] = np.interp(s_nodes, sg, V / T)
+    below_m = float(max(0.0, -np.min(y))) if scene.seabed is not None else 0.0
     if scene.seabed is not None:
         # the EI = 0 catenary of a buoyant line can dip below the seabed (a second
         # touchdown): start those nodes on the seabed, lying flat, instead of metres deep
@@ -181,8 +195,10 @@ def catenary_shape(scene: Scene, s_nodes: np.ndarray, grid_step: float = 1.0):
     D /= np.linalg.norm(D, axis=1)[:, None]
     smid = 0.5 * (s_nodes[1:] + s_nodes[:-1])
     info = {"catenary_misfit_m": err * chord, "catenary_H": H,
+            "catenary_below_seabed_m": below_m,
             "element_tension": np.interp(smid, sg, T),
-            "catenary_tdp_s": (min(max(params[1], 0.0), 1.0) * L) if on_seabed else None}
+            "catenary_tdp_s": (min(max(params[1], 0.0), 1.0) * L)
+            if on_seabed and params[1] >= 0.0 else None}
     return X, D, info
 
 

@@ -147,7 +147,8 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
             "tolerance": tol, "compile_s": compile_s, "static_scheme": sinfo["static_scheme"],
             "step_limit": sinfo["step_limit"], "critical_steps": sinfo["critical_steps"],
             "kernel": "planar" if planar else "3d", "static_stages": sinfo["stages"],
-            "catenary_tdp_s": sinfo.get("catenary_tdp_s")}
+            "catenary_tdp_s": sinfo.get("catenary_tdp_s"),
+            "static_continuation": sinfo.get("continuation")}
     effects = model.effects
     finite = bool(np.all(np.isfinite(model.X)) and np.all(np.isfinite(model.D)))
     r = model.nodal_results() if finite else None
