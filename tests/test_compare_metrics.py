@@ -67,3 +67,24 @@ def test_summary_crest_refinement():
     assert len(crests) == 1
     assert crests[0]["s"] == pytest.approx(30.3, abs=1e-9)
     assert crests[0]["height"] == pytest.approx(50.0, abs=1e-9)
+
+
+def _two_peaks(a1: float, a2: float) -> Profile:
+    """A profile whose moment has two Gaussian peaks of heights a1 (s = 100 m) and a2
+    (s = 400 m)."""
+    s = np.linspace(0.0, 500.0, 5001)
+    m = a1 * np.exp(-((s - 100.0) / 10.0) ** 2) + a2 * np.exp(-((s - 400.0) / 10.0) ** 2)
+    one = np.ones_like(s)
+    return Profile(s=s, x=s, y=0 * s, z=0 * s, theta=0 * s, tension=one, moment=m,
+                   shear=0 * s, curvature=0 * s)
+
+
+def test_peak_location_ties_are_not_a_300_m_error():
+    from verification.compare import peak_location_distance
+    # two peaks within 0.01 % of each other: which one is 'the' maximum is decided by
+    # noise, so the location distance is that of the nearest near-maximum peaks (0 m)
+    b, v = _two_peaks(1000.0, 999.9), _two_peaks(999.9, 1000.0)
+    assert peak_location_distance(b, v, tol=20.0) == pytest.approx(0.0, abs=1e-9)
+    # a real difference (10 % apart, beyond the 2 % tolerance) is still 300 m
+    b, v = _two_peaks(1000.0, 900.0), _two_peaks(900.0, 1000.0)
+    assert peak_location_distance(b, v, tol=20.0) == pytest.approx(300.0, abs=0.2)

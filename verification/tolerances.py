@@ -35,7 +35,9 @@ TOLERANCES = {
     "crest_s": ("abs", 5.0),
     "sag_s": ("abs", 5.0),
     "max_moment": ("rel", 2.0e-2),
-    "max_moment_s": ("abs", 5.0),              # m; same reason as crest_s
+    # m; same reason as crest_s. Peaks whose moments lie within the max_moment tolerance
+    # of the maximum count as ties (see compare.peak_location_distance)
+    "max_moment_s": ("abs", 5.0),
 }
 
 

@@ -102,8 +102,6 @@ class Model:
         self.use_dashpot = False
         self.Q = np.zeros((k, ne))
         self.steps = 0
-        self._ke_prev = 0.0        # kinetic damping: energy of the step before, steps since
-        self._peak_gap = 0         # the last reset (carried across calls)
 
     def set_axial_dashpot(self, eta) -> None:
         """Axial dashpot coefficients [N s/m] per element (scalar or (ne,)); all zero turns
@@ -120,25 +118,10 @@ class Model:
         self.im = 1.0 / self.mass
         self.imd = np.zeros(self.mesh.n)
         self.jrot = np.asarray(jrot, float).copy()
+        self.jinv = 1.0 / self.jrot
+        for end in self.clamped:                 # a clamped end does not rotate
+            self.jinv[0 if end == "bottom" else -1] = 0.0
         self.cseabed = 2.0 * self.seabed_zeta * np.sqrt(self.kseabed * self.trib * self.mass)
-
-    def run_kinetic(self, nsteps: int, dt: float, *, c: float = 0.0, tol_f: float = -1.0,
-                    tol_m: float = -1.0, vmax: float = 1.0e3):
-        """Up to ``nsteps`` steps with kinetic damping (statics; see
-        :func:`vfife.relaxation.run_kinetic`); returns its tuple without the carried state."""
-        from .relaxation import run_kinetic
-        out = run_kinetic(nsteps, self.planar, self.X, self.V, self.D, self.W, self.F,
-                          self.MA, self.MB, self.Fn, self.l0, self.kax, self.kb, self.mass,
-                          self.im, self.imd, 1.0 / self.jrot, self.jrot, self.wload,
-                          self.trib, self.cdn, self.cdt, self.heights, self.speeds,
-                          self.cdir[:2].copy() if self.planar else self.cdir, self.use_drag,
-                          self.kseabed, self.cseabed, self.mu, self.vfric, self.use_seabed,
-                          self.eta, self.Q, self.use_dashpot, dt, c, tol_f, tol_m, vmax,
-                          self._ke_prev, self._peak_gap)
-        self._ke_prev = float(out[6])
-        self._peak_gap = int(out[7])
-        self.steps += int(out[0])
-        return out
 
     # -------------------------------------------------------------- effects
     @property

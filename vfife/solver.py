@@ -144,6 +144,7 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
     info = {"elements": mesh.ne, "nodes": mesh.n, "element_length": float(np.max(mesh.l0)),
             "time_step": sinfo["time_step"], "steps": sinfo["steps"],
             "residual": sinfo["residual"], "moment_residual": sinfo["moment_residual"],
+            "creep_m": sinfo["creep_m"], "creep_tolerance_m": sinfo["creep_tolerance_m"],
             "tolerance": tol, "compile_s": compile_s, "static_scheme": sinfo["static_scheme"],
             "step_limit": sinfo["step_limit"], "critical_steps": sinfo["critical_steps"],
             "kernel": "planar" if planar else "3d", "static_stages": sinfo["stages"],
@@ -157,6 +158,11 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
         why = (sinfo.get("diverged") or "static relaxation diverged (NaN/inf in the state); "
                "likely cause: time step above the critical step or an impossible geometry"
                if sinfo["status"] == "blow-up" or not finite else
+               f"static relaxation still creeping after {sinfo['steps']} steps: residual "
+               f"{sinfo['residual']:.3g} x element weight (tolerance {tol:g}) but an "
+               f"estimated {sinfo['creep_m']:.3g} m of displacement still to come (creep "
+               f"tolerance {sinfo['creep_tolerance_m']:.3g} m); raise [vfife] max_steps"
+               if sinfo["status"] == "creeping" else
                f"static relaxation did not reach the tolerance {tol:g} in {sinfo['steps']} "
                f"steps (residual {sinfo['residual']:.3g} x element weight); raise [vfife] "
                "max_steps or check the geometry")
@@ -165,8 +171,8 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
                            effects=effects, info=info)
     profile = make_profile(model, scene, meta={"method": "vfife"})
     extra: dict = {}
-    message = (f"static equilibrium: residual {sinfo['residual']:.2g} x element weight after "
-               f"{sinfo['steps']} steps")
+    message = (f"static equilibrium: residual {sinfo['residual']:.2g} x element weight, "
+               f"estimated creep {sinfo['creep_m']:.2g} m, after {sinfo['steps']} steps")
     converged = True
     if scene.dynamics is not None:
         dmodel, dinfo = run_dynamics(scene, model, planar, progress)

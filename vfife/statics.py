@@ -22,17 +22,19 @@ vanish at rest; the out-of-balance force does not count the fictitious damping f
 - the rotational inertia is scaled by ``rotational_inertia_scale`` (default 4, which
   makes the step axial-limited); no added mass;
 - mass-proportional damping c [1/s], a multiple of the estimated fundamental frequency
-  omega_1: ``STATIC_DAMPING`` (10) x 2 omega_1 on the coarse mesh (overdamped: the
-  catenary start is already close in the long modes), ``STATIC_DAMPING_FINE`` (30) x
-  2 omega_1 on the fine mesh (its start, the interpolated coarse equilibrium, is wrong
-  mostly in short waves, which decay at c/2: Wang baseline at 1 m, 34k fine steps
-  against 92k with 10 x), except with a current, where the fine mesh stays at
-  ``STATIC_DAMPING``: the drag load changes with the mesh along the whole line, the
-  fine stage must move long modes (decaying at omega^2 / c), and 30 x took 2.5-4x the
-  steps of 10 x (Wang with currents -1.5 to +1.5 m/s at 1 m). (An adaptive c, critical
-  for the motion under way from its Rayleigh quotient, was tried and dropped: it stops on a
-  zero crossing of an underdamped long mode, 2-4 m from the equilibrium on
-  yu2021-a2-sheared, with the force residual below the tolerance);
+  omega_1: ``STATIC_DAMPING`` (3) x 2 omega_1 on the coarse mesh (or a single-stage run
+  from the catenary); on the fine mesh ``STATIC_DAMPING_FINE`` (30) x 2 omega_1
+  (``STATIC_DAMPING_CURRENT``, 10, with a current: the drag load changes with the mesh
+  along the whole line) until the force residual is met, because its start, the
+  interpolated coarse equilibrium, is wrong mostly in short waves, which decay at c/2;
+  if the long modes still creep after four windows of the creep check, the fine stage
+  goes on at the coarse damping, under which they decay at omega^2 / c (yu2021-a3 at 1 m:
+  4.8e6 steps at 30 x throughout, 7.5e5 with the switch);
+- convergence: force residual below the tolerance *and* the displacement still to come
+  (Aitken estimate from windows of steps, see :func:`relax`) below ``CREEP_TOLERANCE``
+  (1e-5) x the line length, on every stage. The force test alone stopped the Wang riser
+  with a current ~1 m of touchdown travel short of its equilibrium (moment difference to
+  the BVP 5.8 % instead of 2.5 %) and made results depend on the path (start, rounding);
 - an axial dashpot per element on the elongation rate (stiffness-proportional damping of
   the axial modes, ``AXIAL_DAMPING`` = 0.1 of critical at the highest axial frequency;
   :func:`axial_dashpot`), included in the critical step (x (sqrt(1.01) - 0.1) = 0.905).
@@ -42,28 +44,25 @@ vanish at rest; the out-of-balance force does not count the fictitious damping f
 
 Fictitious static inertia (:func:`vfife.relaxation.static_inertia`, knob
 ``static_fictitious_inertia``, default on): the step is the axial one of the physical
-masses, and each node whose own bending/string, seabed-spring (final mesh) or rotational
+masses, and each node whose own bending/string, seabed-spring or rotational
 stiffness would need a smaller step gets the larger mass or rotational inertia that makes
 it stable at that step (Gershgorin row bound). Stiff pipe (hard-stiff, EI 1e9: rotation
-x63, bending x4.3) converges in 0.68e6 steps instead of failing after 5e6. Where the
-seabed spring alone would limit the step on the final mesh (long elements: 20 m), the
+x63, bending x4.3) converges in ~0.3e6 steps instead of failing after 5e6. Where the
+seabed spring alone would limit the step (long elements: 20 m), the
 contact damping is raised to critical (``static_contact_damping``): a node resting on a
 penalty spring resolved by ~1.6 rad per step bounced without end (hard-coarse-elements:
-1.14 element weights after 5e6 steps; now 4.3e4 steps). Coarse stages of a sequence keep
-the seabed-limited step (their result is only a start).
+1.14 element weights after 5e6 steps; now 4.3e4 steps). Every stage is treated alike.
 
 Unusable catenary start (it misses the hang-off, or its buoyant part dips more than 1 %
 of the hang-off height below the seabed, e.g. 100 % buoyancy loss in one section: a
 second touchdown): start from the catenary of a uniform line of the mean |w| and ramp the
 weight to the scene's in ``static_weight_continuation_steps`` (10) loose relaxations on the
 first mesh (continuation in buoyancy; the equilibrium is that of the full weight).
-A kinetic-damping driver (``static_relaxation = "kinetic"``, :mod:`vfife.relaxation`) is
-available but not the default: with the global kinetic energy, the high-frequency content
-of the start triggers a reset every ~3 steps and the relaxation stalls.
 
 Programmatic knobs (``scene.vfife`` entries, not in the scene file schema):
-``static_damping``, ``static_damping_fine``, ``static_axial_damping`` (0 turns the
-dashpot off). The relaxation takes ~sqrt(EA) steps (the axial wave sets the step; the
+``static_damping``, ``static_damping_fine``, ``static_damping_current``,
+``creep_tolerance`` (fraction of the line length; 0 turns the creep test off),
+``static_axial_damping`` (0 turns the dashpot off). The relaxation takes ~sqrt(EA) steps (the axial wave sets the step; the
 relaxation time is set by the damping and the transverse modes, not by EA).
 Converged when the largest nodal out-of-balance force (free nodes) is below
 ``tolerance`` x the weight of one element, and the largest nodal moment below the same
@@ -83,9 +82,13 @@ from .relaxation import static_inertia
 from .timestep import choose_step, critical_steps
 
 #: damping of the relaxation as a multiple of critical damping of the fundamental mode
-STATIC_DAMPING = 10.0
+STATIC_DAMPING = 3.0
 #: ... starting value on the fine mesh of a mesh sequence
 STATIC_DAMPING_FINE = 30.0
+#: ... on the fine mesh with a current (the drag load moves long modes there)
+STATIC_DAMPING_CURRENT = 10.0
+#: remaining-displacement (creep) tolerance as a fraction of the line length
+CREEP_TOLERANCE = 1e-5
 #: contact damping ratio of the seabed spring in statics (at least; the scene's if higher)
 STATIC_CONTACT_DAMPING = 1.0
 #: steps of the continuation in weight/buoyancy used when the catenary start is unusable
@@ -138,9 +141,25 @@ def weight_scale(mesh: Mesh) -> float:
 
 
 def relax(model: Model, dt: float, c: float, tol: float, max_steps: int,
-          chunk: int = 20000, progress=None, label: str = "") -> dict:
+          chunk: int = 20000, progress=None, label: str = "",
+          creep_tol: float | None = None, creep_windows: int | None = None) -> dict:
     """Relax ``model`` to equilibrium; returns a dict (steps, residual (relative),
-    moment_residual (relative), status 'converged' | 'max_steps' | 'blow-up', wall_s)."""
+    moment_residual (relative), creep_m (estimated remaining displacement [m], NaN when not
+    checked), status 'converged' | 'max_steps' | 'creeping' | 'blow-up', wall_s).
+
+    Converged when the largest nodal out-of-balance force is below ``tol`` x one element's
+    weight (moments: x the element length) and, with ``creep_tol`` [m], when the
+    displacement still to come is below ``creep_tol``. Why the second test: a soft mode
+    (the touchdown sliding along the seabed, the lateral sway of a lazy wave) carries a
+    large displacement error for a small force (error ~ r / (m omega_1^2): 1e-3 element
+    weights is ~1 m on the 2,600 m Wang riser), and the over-damped relaxation creeps
+    towards it at omega_1^2 / c. The remaining displacement is estimated by Aitken
+    extrapolation of the largest nodal displacement over successive windows of steps:
+    d_k -> remaining = d_k q / (1 - q), q = d_k / d_(k-1) (exact for one decaying mode),
+    accepted only once q is steady (changes by <= 0.05 between windows), i.e. the slowest
+    mode dominates the motion. ``creep_windows``: give up after that many windows with
+    status 'creeping' (the caller then changes the damping), None: until ``max_steps``.
+    """
     wl = weight_scale(model.mesh)
     h = float(np.max(model.mesh.l0))
     tol_f = tol * wl
@@ -149,6 +168,7 @@ def relax(model: Model, dt: float, c: float, tol: float, max_steps: int,
     done = 0
     status = "max_steps"
     res = mres = float("nan")
+    creep = float("nan")
     while done < max_steps:
         nstep = min(chunk, max_steps - done)
         k, res, mres, ke, st = model.run(nstep, dt, c, tol_f=tol_f, tol_m=tol_m)
@@ -156,47 +176,44 @@ def relax(model: Model, dt: float, c: float, tol: float, max_steps: int,
         if progress is not None:
             progress(f"{label} relaxation: {done} steps, residual {res / wl:.3g} x element "
                      f"weight")
-        if st == 1:
-            status = "converged"
-            break
         if st == 2 or not (np.all(np.isfinite(model.X)) and np.all(np.isfinite(model.D))):
             status = "blow-up"
             break
-    return {"steps": done, "residual": res / wl, "moment_residual": mres / (wl * h),
-            "status": status, "wall_s": time.perf_counter() - t0, "dt": dt, "damping": c}
-
-
-def relax_kinetic(model: Model, dt: float, tol: float, max_steps: int, chunk: int = 20000,
-                  progress=None, label: str = "") -> dict:
-    """Relax ``model`` with kinetic damping (:meth:`Model.run_kinetic`); returns the dict of
-    :func:`relax` plus the number of kinetic-energy resets."""
-    wl = weight_scale(model.mesh)
-    h = float(np.max(model.mesh.l0))
-    tol_f = tol * wl
-    tol_m = tol * wl * h
-    t0 = time.perf_counter()
-    done = 0
-    resets = 0
-    status = "max_steps"
-    res = mres = float("nan")
-    while done < max_steps:
-        nstep = min(chunk, max_steps - done)
-        k, res, mres, ke, st, nr, _, _, gap = model.run_kinetic(nstep, dt, tol_f=tol_f,
-                                                                 tol_m=tol_m)
-        done += k
-        resets += nr
-        if progress is not None:
-            progress(f"{label} relaxation: {done} steps, residual {res / wl:.3g} x element "
-                     f"weight, {resets} kinetic-energy resets")
         if st == 1:
-            status = "converged"
-            break
-        if st == 2 or not (np.all(np.isfinite(model.X)) and np.all(np.isfinite(model.D))):
-            status = "blow-up"
+            if creep_tol is None:
+                status = "converged"
+                break
+            window = int(min(max(done // 4, 1000), 50000))
+            d_prev = math.inf
+            q_prev = math.nan
+            status = "creeping"
+            nwin = 0
+            while done < max_steps and (creep_windows is None or nwin < creep_windows):
+                nwin += 1
+                X0 = model.X.copy()
+                k, res, mres, ke, st = model.run(min(window, max_steps - done), dt, c)
+                done += k
+                if st == 2 or not np.all(np.isfinite(model.X)):
+                    status = "blow-up"
+                    break
+                d = float(np.max(np.sqrt(np.sum((model.X - X0) ** 2, axis=0))))
+                q = d / d_prev if d_prev > 0.0 else 0.0
+                # one decaying mode has a steady ratio q; while faster modes still decay the
+                # ratio grows from window to window and the extrapolation is not yet valid
+                steady = abs(q - q_prev) <= 0.05 or d == 0.0
+                creep = d * q / (1.0 - q) if (q < 1.0 and steady) else math.inf
+                d_prev, q_prev = d, q
+                if progress is not None:
+                    progress(f"{label} creep check: {done} steps, moved {d:.3g} m in "
+                             f"{window} steps, estimated remaining {creep:.3g} m")
+                if (creep < creep_tol and d < creep_tol and res <= tol_f
+                        and (mres <= tol_m or tol_m <= 0.0)):
+                    status = "converged"
+                    break
             break
     return {"steps": done, "residual": res / wl, "moment_residual": mres / (wl * h),
-            "status": status, "wall_s": time.perf_counter() - t0, "dt": dt, "damping": 0.0,
-            "resets": resets}
+            "creep_m": creep, "status": status, "wall_s": time.perf_counter() - t0,
+            "dt": dt, "damping": c}
 
 
 def divergence_message(scene, h: float, dt: float, limit: str, steps: dict,
@@ -236,7 +253,9 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
     zeta_a = float(vf.get("static_axial_damping", AXIAL_DAMPING))
     cfac = float(vf.get("static_damping", STATIC_DAMPING))
     cfac_fine = float(vf.get("static_damping_fine", STATIC_DAMPING_FINE))
-    scheme = str(vf.get("static_relaxation", "viscous"))
+    cfac_current = float(vf.get("static_damping_current", STATIC_DAMPING_CURRENT))
+    creep_tol = float(vf.get("creep_tolerance", CREEP_TOLERANCE)) * float(
+        sum(sg.length for sg in scene.segments))
     fictitious = bool(vf.get("static_fictitious_inertia", True))
     zeta_c = float(vf.get("static_contact_damping", STATIC_CONTACT_DAMPING))
     cont_steps = int(vf.get("static_weight_continuation_steps", WEIGHT_CONTINUATION_STEPS))
@@ -246,7 +265,8 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
     damp = (f"{cfac:g} x ({h_coarse:g} m), {cfac_fine:g} x ({element_length:g} m)"
             if len(stages) > 1 else f"{cfac:g} x")
     if scene.current is not None and scene.current.max_abs_speed > 0.0:
-        damp = f"{cfac:g} x (with a current)"
+        damp = (f"{cfac:g} x ({h_coarse:g} m), {cfac_current:g} x ({element_length:g} m, "
+                "with a current)" if len(stages) > 1 else f"{cfac:g} x")
     damp += " critical of mode 1"
     info: dict = {"static_scheme": "catenary start, dynamic relaxation, mesh sequencing "
                   f"{h_coarse:g} m -> {element_length:g} m, viscous mass-proportional damping "
@@ -257,7 +277,6 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
                      "rotation or seabed spring would limit the step below the axial one "
                      "(contact damping 1 x critical on a final mesh where the seabed spring "
                      "would)" if fictitious else "")
-                  + (", kinetic damping" if scheme == "kinetic" else "")
                   + ", length-consistent starting shapes; fictitious inertia "
                   "and damping only, the equilibrium and the out-of-balance force "
                   "(fictitious damping not counted) are unchanged"}
@@ -326,7 +345,7 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
         # step of the contact spring alone (physical mass), against the axial step
         spring_step = (float(np.min(2.0 / np.sqrt(kseabed * mesh.trib / mesh.lump(mesh.mass_pl))))
                        if kseabed > 0.0 else math.inf)
-        if fictitious and last and spring_step < steps["axial"]:
+        if fictitious and spring_step < steps["axial"]:
             # the contact spring would set the step (long elements on a stiff seabed): the
             # contact nodes get fictitious mass instead, and contact damping, because a
             # node resting on a penalty spring resolved by ~1 step per radian bounces
@@ -340,13 +359,9 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
                 contact = X[:, 1] < band
             dt, mass, J, iinfo = static_inertia(
                 mesh, rot_scale=rot_scale, tension=2.0 * np.max(np.abs(Ne)), safety=safety,
-                seabed_stiffness=kseabed if last else 0.0, seabed_zeta=new.seabed_zeta,
+                seabed_stiffness=kseabed, seabed_zeta=new.seabed_zeta,
                 contact=contact, axial_damping=new.eta)
             limit = "axial (fictitious inertia elsewhere)"
-            if not last and "seabed" in steps:
-                # coarse stage of a sequence: the seabed still sets the step as before (its
-                # result is only a start; kept so the stored 1 m equilibria do not move)
-                dt = min(dt, safety * steps["seabed"])
             new.set_static_inertia(mass, J)
         else:
             dt, limit = choose_step(steps, safety)
@@ -368,14 +383,31 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
             new.wload = wl_true
             budget = max(1, budget - pre)
             total_steps += pre
-        if scheme == "kinetic":
-            r = relax_kinetic(new, dt, tolerance, budget, progress=progress,
-                              label=f"{h:g} m mesh")
+        # a single-stage run (no coarse mesh) starts from the catenary: coarse damping
+        om1 = fundamental_omega(mesh, tension)
+        ctol = creep_tol if creep_tol > 0 else None
+        if si == 0:
+            r = relax(new, dt, cfac * 2.0 * om1, tolerance, budget, progress=progress,
+                      label=f"{h:g} m mesh", creep_tol=ctol)
         else:
-            # a single-stage run (no coarse mesh) starts from the catenary: coarse damping
-            cf = cfac_fine if si > 0 and not new.use_drag else cfac
-            c = cf * 2.0 * fundamental_omega(mesh, tension)
-            r = relax(new, dt, c, tolerance, budget, progress=progress, label=f"{h:g} m mesh")
+            # fine stage of a sequence: heavy damping until the force residual is met (the
+            # short waves of the interpolated start decay at c/2); if the long modes still
+            # creep after a few windows, the coarse-stage damping for them (they decay at
+            # omega^2 / c): buoyancy sections whose ends fall inside a coarse element move
+            # the long modes on the fine mesh (yu2021-a3 at 1 m took 4.8e6 steps at 30 x,
+            # 7.4e5 at 3 x), while short waves need the heavy damping (Wang baseline:
+            # 3.6e4 at 30 x, 4.2e5 at 3 x; hard-stiff stalls at 1.4e-3 at 3 x)
+            c = (cfac_current if new.use_drag else cfac_fine) * 2.0 * om1
+            r = relax(new, dt, c, tolerance, budget, progress=progress, label=f"{h:g} m mesh",
+                      creep_tol=ctol, creep_windows=4 if ctol is not None else None)
+            if r["status"] == "creeping" and budget > r["steps"]:
+                r2 = relax(new, dt, cfac * 2.0 * om1, tolerance, budget - r["steps"],
+                           progress=progress, label=f"{h:g} m mesh (long modes)",
+                           creep_tol=ctol)
+                r2["steps"] += r["steps"]
+                r2["wall_s"] += r["wall_s"]
+                r2["damping"] = f"{c:.3g} then {r2['damping']:.3g}"
+                r = r2
         r.update(iinfo)
         total_steps += r["steps"]
         info.setdefault("stages", []).append({"element_length": h, "elements": mesh.ne,
@@ -383,7 +415,7 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
                                               "critical_steps": steps,
                                               **{k: r[k] for k in ("steps", "residual",
                                                                    "status", "wall_s",
-                                                                   "damping")},
+                                                                   "damping", "creep_m")},
                                               **{k: r[k] for k in ("resets", "dt_axial",
                                                                    "mass_factor_max",
                                                                    "rot_factor_max")
@@ -397,5 +429,6 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
     info.update({"steps": total_steps, "residual": last["residual"],
                  "moment_residual": r["moment_residual"], "time_step": last["time_step"],
                  "status": last["status"], "critical_steps": steps,
-                 "step_limit": last["step_limit"]})
+                 "step_limit": last["step_limit"], "creep_m": last["creep_m"],
+                 "creep_tolerance_m": creep_tol})
     return model, info
