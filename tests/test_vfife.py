@@ -544,3 +544,15 @@ def test_hanging_chain_out_of_plane_frequency():
     # measured 1.2e-5. 1e-3 is well below the 0.4 % sag correction, so the test tells the
     # catenary value from the taut-string one.
     assert f == pytest.approx(f_ref, rel=1e-3)
+
+
+def test_clamped_end_in_3d_is_refused():
+    # no twist in the elements: a clamped end loaded out of its plane would need GJ, so the
+    # solver refuses it before solving, naming the key
+    import dataclasses
+    from riser.errors import UnsupportedSceneError
+    from verification.catalog import resolve
+    sc = resolve("hard-out-of-plane-current")
+    sc = dataclasses.replace(sc, vfife={**sc.vfife, "clamped_ends": ("bottom",)})
+    with pytest.raises(UnsupportedSceneError, match="vfife.clamped_ends"):
+        vfife.solve(sc)

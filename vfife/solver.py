@@ -8,6 +8,7 @@ import time
 
 import numpy as np
 
+from riser.errors import UnsupportedSceneError
 from riser.profile import Profile
 from riser.result import SolveResult
 from riser.scene import Scene
@@ -137,6 +138,14 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
     h = float(element_length if element_length is not None else vf.get("element_length", 1.0))
     tol = float(tolerance if tolerance is not None else vf.get("static_tolerance", 1e-3))
     planar = bool(scene.is_planar)
+    if vf.get("clamped_ends") and not planar:
+        # the elements carry no twist (no GJ): with moment-free ends and no distributed
+        # torque a round pipe is torsion-free, but a clamped end of a line loaded out of
+        # its plane would need the torsional stiffness
+        raise UnsupportedSceneError(
+            f"{scene.name}: vfife.clamped_ends: clamped ends are supported for planar "
+            "scenes only (the VFIFE elements carry no twist); remove the out-of-plane "
+            "current/motion or the clamp")
     compile_s = warm_up()
     t0 = time.perf_counter()
     model, sinfo = solve_static(scene, h, tol, planar, progress)
