@@ -7,6 +7,7 @@ Exit codes: 0 success; 1 a solver did not converge (its message is printed); 2 b
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 import time
 from pathlib import Path
@@ -81,38 +82,90 @@ def cmd_solve(args) -> int:
     return 0
 
 
+# the units of work of ``reproduce``, longest first (measured wall times [s] of a serial
+# run on this machine): ``reproduce all --jobs N`` hands them to N worker processes
+# (longest-processing-time-first), each unit writing its own report directory
+UNIT_SECONDS = {("cost", "yu2021-a2-sheared"): 350, ("cost", "yu2021-a3"): 195,
+                ("yu2021", None): 126, ("cost", "wang2014-baseline"): 92,
+                ("wang2014", None): 87, ("stress", None): 73}
+
+
+def reproduce_units(name: str) -> list[tuple[str, str | None]]:
+    """(study, scene or None) units of ``reproduce NAME``; 'all' is every study."""
+    from .cost import COST_SCENES
+    units = []
+    for study_name in (STUDIES if name == "all" else (name,)):
+        if study_name == "compare":
+            units += [("compare", s) for s in COMPARE_SCENES]
+        elif study_name == "cost":
+            units += [("cost", s) for s in COST_SCENES]
+        else:
+            units.append((study_name, None))
+    return sorted(units, key=lambda u: -UNIT_SECONDS.get(u, 15))
+
+
+def run_unit(study_name: str, scene_name: str | None, out: str, note: str = "") -> str:
+    """Run one unit of ``reproduce`` into ``out`` (the study's directory); returns a line
+    for the log. Top level so that worker processes can run it."""
+    t0 = time.perf_counter()
+    out_dir = Path(out)
+    if study_name == "wang2014":
+        from . import wang2014
+        wang2014.run(out_dir)
+    elif study_name == "yu2021":
+        from . import yu2021
+        yu2021.run(out_dir)
+    elif study_name == "compare":
+        from . import compare
+        from .catalog import resolve
+        try:
+            comp = compare.compare(resolve(scene_name))
+        except RuntimeError as exc:
+            return f"compare {scene_name}: {exc}"
+        compare.write(comp, out_dir / scene_name)
+        return (f"compare {scene_name}: {'PASS' if comp.passed else 'FAIL'} "
+                f"({time.perf_counter() - t0:.1f} s)")
+    elif study_name == "stress":
+        from . import stress
+        stress.run(out_dir)
+    elif study_name == "cost":
+        from . import cost
+        from .catalog import resolve
+        st = cost.study(resolve(scene_name))
+        if note:
+            st.notes.append(note)
+        cost.write(st, out_dir / scene_name)
+        return f"cost {scene_name}: wrote {out_dir / scene_name}/ in {st.elapsed_s:.0f} s"
+    return f"{study_name}: wrote {out_dir}/ in {time.perf_counter() - t0:.1f} s"
+
+
 def cmd_reproduce(args) -> int:
-    names = STUDIES if args.name == "all" else (args.name,)
     base = Path(args.out) if args.out else None
-    for name in names:
-        t0 = time.perf_counter()
-        out = (base / name if args.name == "all" else base) if base else Path("reports") / name
-        if name == "wang2014":
-            from . import wang2014
-            wang2014.run(out)
-        elif name == "yu2021":
-            from . import yu2021
-            yu2021.run(out)
-        elif name == "compare":
-            from . import compare
-            from .catalog import resolve
-            for scene_name in COMPARE_SCENES:
-                t1 = time.perf_counter()
-                try:
-                    comp = compare.compare(resolve(scene_name))
-                except RuntimeError as exc:
-                    print(f"compare {scene_name}: {exc}")
-                    continue
-                compare.write(comp, out / scene_name)
-                print(f"compare {scene_name}: {'PASS' if comp.passed else 'FAIL'} "
-                      f"({time.perf_counter() - t1:.1f} s)")
-        elif name == "stress":
-            from . import stress
-            stress.run(out)
-        elif name == "cost":
-            from . import cost
-            cost.run(out)
-        print(f"{name}: wrote {out}/ in {time.perf_counter() - t0:.1f} s")
+
+    def out_of(study_name: str) -> str:
+        if base is None:
+            return str(Path("reports") / study_name)
+        return str(base / study_name if args.name == "all" else base)
+
+    units = reproduce_units(args.name)
+    jobs = max(1, min(args.jobs, len(units)))
+    t0 = time.perf_counter()
+    note = ("Timings measured while `riser-verify reproduce all` ran other reports in "
+            f"{jobs - 1} more worker process(es) on this {os.cpu_count()}-core machine; run "
+            "`riser-verify cost SCENE` alone for uncontended timings." if jobs > 1 else "")
+    if jobs == 1:
+        for u in units:
+            print(run_unit(*u, out_of(u[0]), note), flush=True)
+    else:
+        import concurrent.futures as cf
+        import multiprocessing as mp
+        with cf.ProcessPoolExecutor(max_workers=jobs,
+                                    mp_context=mp.get_context("spawn")) as pool:
+            futures = [pool.submit(run_unit, *u, out_of(u[0]), note) for u in units]
+            for f in cf.as_completed(futures):
+                print(f.result(), flush=True)
+    print(f"reproduce {args.name}: {len(units)} unit(s) in {time.perf_counter() - t0:.0f} s "
+          f"with {jobs} process(es)")
     from .index import write_index
     if base is None:
         print(f"index: {write_index(Path('reports'))}")
@@ -205,6 +258,8 @@ def build_parser() -> argparse.ArgumentParser:
     s.set_defaults(func=cmd_solve)
     s = sub.add_parser("reproduce", help="regenerate a paper reproduction report")
     s.add_argument("name", choices=STUDIES + ("all",))
+    s.add_argument("--jobs", type=int, default=min(2, os.cpu_count() or 1),
+                   help="worker processes (default: min(2, cores)); 1 runs serially")
     s.add_argument("--out", help="output directory (default reports/NAME)")
     s.set_defaults(func=cmd_reproduce)
     s = sub.add_parser("compare", help="solve a scene with both methods and compare them")

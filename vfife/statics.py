@@ -79,7 +79,7 @@ import numpy as np
 from .mesh import Mesh, build_mesh, catenary_shape, interpolate_state, length_consistent
 from .model import Model
 from .relaxation import static_inertia
-from .timestep import choose_step, critical_steps
+from .timestep import choose_step, critical_steps, node_sum
 
 #: damping of the relaxation as a multiple of critical damping of the fundamental mode
 STATIC_DAMPING = 3.0
@@ -116,9 +116,7 @@ def axial_dashpot(mesh: Mesh, zeta: float) -> np.ndarray:
     if zeta <= 0.0:
         return np.zeros(mesh.ne)
     ka = mesh.EA / mesh.l0
-    sa = np.zeros(mesh.n)
-    sa[:-1] += ka
-    sa[1:] += ka
+    sa = node_sum(ka)
     om = float(np.max(np.sqrt(2.0 * sa / mesh.lump(mesh.mass_pl))))
     return 2.0 * zeta / om * ka
 
@@ -206,6 +204,11 @@ def relax(model: Model, dt: float, c: float, tol: float, max_steps: int,
                 if progress is not None:
                     progress(f"{label} creep check: {done} steps, moved {d:.3g} m in "
                              f"{window} steps, estimated remaining {creep:.3g} m")
+                # a motion below 1e-3 creep tolerances per window is round-off jitter (its
+                # ratio q is noise): a mode that slow would need > 1000 windows to cover
+                # one creep tolerance
+                if d < 1e-3 * creep_tol:
+                    creep = d
                 if (creep < creep_tol and d < creep_tol and res <= tol_f
                         and (mres <= tol_m or tol_m <= 0.0)):
                     status = "converged"

@@ -31,6 +31,16 @@ import numpy as np
 from .mesh import Mesh
 
 
+def node_sum(per_element) -> np.ndarray:
+    """Per-node sum of a per-element quantity over the (one or two) elements meeting at
+    each node: the Gershgorin row sum of an element stiffness or damping."""
+    e = np.asarray(per_element, float)
+    out = np.zeros(e.shape[0] + 1)
+    out[:-1] += e
+    out[1:] += e
+    return out
+
+
 def damped_factor(zeta):
     """Factor on 2/omega of the central-difference limit with an explicit viscous force
     of damping ratio zeta: sqrt(1 + zeta^2) - zeta (1 at zeta = 0)."""
@@ -56,22 +66,14 @@ def critical_steps(mesh: Mesh, *, rot_scale: float, tension: float = 0.0,
     J = rot_scale * mesh.lump(mesh.rot_pl)
     ka = mesh.EA / mesh.l0
     kr = 6.0 * mesh.EI / mesh.l0
-    sa = np.zeros(mesh.n)
-    sa[:-1] += ka
-    sa[1:] += ka
-    sr = np.zeros(mesh.n)
-    sr[:-1] += kr
-    sr[1:] += kr
+    sa = node_sum(ka)
+    sr = node_sum(kr)
     # transverse zig-zag stiffness per node (Gershgorin row sum): bending 24 EI/l^3 and
     # string 2 T/l from each adjacent element
     kt_e = 24.0 * mesh.EI / mesh.l0 ** 3 + 2.0 * abs(tension) / mesh.l0
-    st = np.zeros(mesh.n)
-    st[:-1] += kt_e
-    st[1:] += kt_e
+    st = node_sum(kt_e)
     eta = np.broadcast_to(np.asarray(axial_damping, float), mesh.l0.shape)
-    se = np.zeros(mesh.n)
-    se[:-1] += eta
-    se[1:] += eta
+    se = node_sum(eta)
     om_a = np.sqrt(2.0 * sa / m)
     zeta_a = se / (m * om_a)
     out = {
