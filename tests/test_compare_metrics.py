@@ -88,3 +88,19 @@ def test_peak_location_ties_are_not_a_300_m_error():
     # a real difference (10 % apart, beyond the 2 % tolerance) is still 300 m
     b, v = _two_peaks(1000.0, 900.0), _two_peaks(900.0, 1000.0)
     assert peak_location_distance(b, v, tol=20.0) == pytest.approx(300.0, abs=0.2)
+
+
+def test_moment_metric_does_not_fill_in_a_zero_crossing():
+    # the same signed moment M = 1000 sin(s / 10) on a fine and on a coarse grid (a zero at
+    # s = 10 pi): interpolating |M| of the coarse grid fills in the V of the zero by up to
+    # slope x half the spacing (~100 N m here); the signed comparison leaves only the
+    # linear-interpolation error of the smooth curve (1000 h^2 / (8 * 100) ~ 2 N m)
+    def prof(n):
+        s = np.linspace(0.0, 60.0, n)
+        theta = -10.0 * np.cos(s / 10.0) / 1.0e4       # d(theta)/ds has the sign of M
+        m = 1000.0 * np.sin(s / 10.0)
+        one = np.ones_like(s)
+        return Profile(s=s, x=s, y=0 * s, z=0 * s, theta=theta, tension=1e5 * one,
+                       moment=np.abs(m), shear=0 * s, curvature=np.abs(m) / 1e4)
+    rows = {r["quantity"]: r for r in agreement(prof(6001), prof(31), depth=100.0)}
+    assert rows["moment"]["abs_diff"] < 5.0
