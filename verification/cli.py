@@ -267,7 +267,7 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--out", help="output directory (default out/SCENE/compare)")
     s.add_argument("--element-length", type=float, help="vfife element length [m]")
     s.add_argument("--no-sensitivity", action="store_true",
-                   help="skip the VFIFE run with 10x seabed stiffness and EA")
+                   help="skip the VFIFE sensitivity run (10x EA, 16x seabed stiffness, half the element length)")
     s.set_defaults(func=cmd_compare)
     s = sub.add_parser("regress", help="compare every built-in scene with its stored summary")
     s.add_argument("scenes", nargs="*", help="only these built-in scenes")
