@@ -834,17 +834,3 @@ def write(st: CostStudy, out_dir: str | Path) -> None:
     _plots(st, out)
     (out / "report.md").write_text(report_markdown(st))
 
-
-def run(out_root: str | Path | None = None, scenes=COST_SCENES, *, repeats: int = 3,
-        log=print) -> list[CostStudy]:
-    """All cost reports (for ``reproduce all``): ``out_root/SCENE/`` (default
-    ``reports/cost/``)."""
-    from .catalog import resolve
-    root = Path(out_root) if out_root is not None else Path("reports") / "cost"
-    done = []
-    for name in scenes:
-        st = study(resolve(name), repeats=repeats)
-        write(st, root / name)
-        log(f"cost {name}: wrote {root / name}/ in {st.elapsed_s:.0f} s")
-        done.append(st)
-    return done

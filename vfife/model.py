@@ -52,14 +52,8 @@ class Model:
         self.madd = mesh.lump(mesh.added_pl) if added_mass else np.zeros(n)
         self.im = 1.0 / (self.mass + self.madd)
         self.imd = 1.0 / self.mass - self.im
-        self.jrot = rot_scale * mesh.lump(mesh.rot_pl)
-        # clamped ends ([vfife] clamped_ends): no rotation, i.e. infinite rotational
-        # inertia (jinv = 0); the director keeps the direction it has in the state the
-        # model is given (see :meth:`set_state` and the README)
         self.clamped = tuple(scene.vfife.get("clamped_ends", ()))
-        self.jinv = 1.0 / self.jrot
-        for end in self.clamped:
-            self.jinv[0 if end == "bottom" else -1] = 0.0
+        self._set_rotational_inertia(rot_scale * mesh.lump(mesh.rot_pl))
         self.wload = mesh.lump(mesh.weight_pl)
         self.trib = mesh.trib
         self.cdn = mesh.lump(mesh.cdn_pl)
@@ -109,6 +103,16 @@ class Model:
         self.eta = np.broadcast_to(np.asarray(eta, float), self.l0.shape).copy()
         self.use_dashpot = bool(np.any(self.eta > 0.0))
 
+    def _set_rotational_inertia(self, jrot) -> None:
+        """Nodal rotational inertias [kg m2] and their inverses used by the kernels.
+        Clamped ends ([vfife] clamped_ends) do not rotate: infinite rotational inertia
+        (jinv = 0); the director keeps the direction it has in the state the model is
+        given (see :meth:`set_state` and the README)."""
+        self.jrot = np.asarray(jrot, float).copy()
+        self.jinv = 1.0 / self.jrot
+        for end in self.clamped:
+            self.jinv[0 if end == "bottom" else -1] = 0.0
+
     def set_static_inertia(self, mass, jrot) -> None:
         """Fictitious nodal masses [kg] and rotational inertias [kg m2] (statics only, see
         :func:`vfife.relaxation.static_inertia`): isotropic (no added mass), the contact
@@ -117,10 +121,7 @@ class Model:
         self.madd = np.zeros(self.mesh.n)
         self.im = 1.0 / self.mass
         self.imd = np.zeros(self.mesh.n)
-        self.jrot = np.asarray(jrot, float).copy()
-        self.jinv = 1.0 / self.jrot
-        for end in self.clamped:                 # a clamped end does not rotate
-            self.jinv[0 if end == "bottom" else -1] = 0.0
+        self._set_rotational_inertia(jrot)
         self.cseabed = 2.0 * self.seabed_zeta * np.sqrt(self.kseabed * self.trib * self.mass)
 
     # -------------------------------------------------------------- effects

@@ -38,29 +38,21 @@ def static_inertia(mesh: Mesh, *, rot_scale: float, tension, safety: float,
     contact : (n,) bool, nodes that may touch the seabed (None: all, if a seabed).
     Returns (dt [s], mass (n,) [kg], rotational inertia (n,) [kg m2], info dict).
     """
-    from .timestep import damped_factor, node_sum
+    from .timestep import critical_steps, damped_factor, nodal_stiffness
     m = mesh.lump(mesh.mass_pl)
     J = rot_scale * mesh.lump(mesh.rot_pl)
-    ka = mesh.EA / mesh.l0
-    sa = node_sum(ka)
-    eta = np.broadcast_to(np.asarray(axial_damping, float), mesh.l0.shape)
-    se = node_sum(eta)
-    om_a = np.sqrt(2.0 * sa / m)
-    dt_axial = float(np.min(2.0 * damped_factor(se / (m * om_a)) / om_a))
+    dt_axial = critical_steps(mesh, rot_scale=rot_scale, axial_damping=axial_damping)["axial"]
     dt = safety * dt_axial
     dc = dt / safety                         # the critical step every node must reach
-    T = np.broadcast_to(np.abs(np.asarray(tension, float)), mesh.l0.shape)
-    kt_e = 24.0 * mesh.EI / mesh.l0 ** 3 + 2.0 * T / mesh.l0
-    st = node_sum(kt_e)
+    k = nodal_stiffness(mesh, tension)
+    st = k["transverse"]
     m_t = st * dc * dc / 4.0
     if seabed_stiffness > 0.0:
         on = np.ones(mesh.n, bool) if contact is None else np.asarray(contact, bool)
         f = float(damped_factor(seabed_zeta))
         m_s = (st + seabed_stiffness * mesh.trib) * dc * dc / (4.0 * f * f)
         m_t = np.where(on, np.maximum(m_t, m_s), m_t)
-    kr = 6.0 * mesh.EI / mesh.l0
-    sr = node_sum(kr)
-    J_t = sr * dc * dc / 4.0
+    J_t = k["rotation"] * dc * dc / 4.0
     mass = np.maximum(m, m_t)
     Jf = np.maximum(J, J_t)
     info = {"dt_axial": dt_axial, "mass_factor_max": float(np.max(mass / m)),

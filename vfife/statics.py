@@ -200,7 +200,7 @@ def relax(model: Model, dt: float, c: float, tol: float, max_steps: int,
                 q = d / d_prev if d_prev > 0.0 else 0.0
                 # one decaying mode has a steady ratio q; while faster modes still decay the
                 # ratio grows from window to window and the extrapolation is not yet valid
-                steady = abs(q - q_prev) <= 0.05 or d == 0.0
+                steady = abs(q - q_prev) <= 0.05
                 creep = d * q / (1.0 - q) if (q < 1.0 and steady) else math.inf
                 d_prev, q_prev = d, q
                 if progress is not None:
@@ -361,7 +361,6 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
         if si < len(stages) - 1:
             budget = max(1, budget // 2)
         iinfo: dict = {}
-        last = si == len(stages) - 1
         # step of the contact spring alone (physical mass), against the axial step
         spring_step = (float(np.min(2.0 / np.sqrt(kseabed * mesh.trib / mesh.lump(mesh.mass_pl))))
                        if kseabed > 0.0 else math.inf)
@@ -387,6 +386,7 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
             dt, limit = choose_step(steps, safety)
         if fixed_dt is not None:              # expert: fixed step (may exceed the critical)
             dt, limit = float(fixed_dt), "user ([vfife] static_time_step)"
+        om1 = fundamental_omega(mesh, tension)
         if si == 0 and ramp:
             wl_true = new.wload.copy()
             wl_uni = mesh.lump(np.full(mesh.ne, ramp[0]))
@@ -394,8 +394,7 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
             for j in range(1, ramp[1]):
                 lam = j / ramp[1]
                 new.wload = (1.0 - lam) * wl_uni + lam * wl_true
-                cf = cfac * 2.0 * fundamental_omega(mesh, tension)
-                rr = relax(new, dt, cf, 1e-2, max(1, budget // (4 * ramp[1])),
+                rr = relax(new, dt, cfac * 2.0 * om1, 1e-2, max(1, budget // (4 * ramp[1])),
                            label=f"{h:g} m mesh, weight ramp {lam:.2f}")
                 pre += rr["steps"]
                 if rr["status"] == "blow-up":
@@ -404,7 +403,6 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
             budget = max(1, budget - pre)
             total_steps += pre
         # a single-stage run (no coarse mesh) starts from the catenary: coarse damping
-        om1 = fundamental_omega(mesh, tension)
         ctol = creep_tol if creep_tol > 0 else None
         if si == 0:
             r = relax(new, dt, cfac * 2.0 * om1, tolerance, budget, progress=progress,
@@ -436,7 +434,7 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
                                               **{k: r[k] for k in ("steps", "residual",
                                                                    "status", "wall_s",
                                                                    "damping", "creep_m")},
-                                              **{k: r[k] for k in ("resets", "dt_axial",
+                                              **{k: r[k] for k in ("dt_axial",
                                                                    "mass_factor_max",
                                                                    "rot_factor_max")
                                                  if k in r}})

@@ -41,6 +41,16 @@ def node_sum(per_element) -> np.ndarray:
     return out
 
 
+def nodal_stiffness(mesh: Mesh, tension=0.0) -> dict:
+    """Gershgorin row sums per node: 'axial' (EA/l from each adjacent element) [N/m],
+    'rotation' (6 EI/l) [N m/rad] and 'transverse' (bending zig-zag 24 EI/l^3 plus string
+    2 |T|/l) [N/m]; ``tension`` [N] scalar or (ne,)."""
+    T = np.broadcast_to(np.abs(np.asarray(tension, float)), mesh.l0.shape)
+    return {"axial": node_sum(mesh.EA / mesh.l0),
+            "rotation": node_sum(6.0 * mesh.EI / mesh.l0),
+            "transverse": node_sum(24.0 * mesh.EI / mesh.l0 ** 3 + 2.0 * T / mesh.l0)}
+
+
 def damped_factor(zeta):
     """Factor on 2/omega of the central-difference limit with an explicit viscous force
     of damping ratio zeta: sqrt(1 + zeta^2) - zeta (1 at zeta = 0)."""
@@ -64,14 +74,8 @@ def critical_steps(mesh: Mesh, *, rot_scale: float, tension: float = 0.0,
     m = mesh.lump(mesh.mass_pl)            # axial direction: no added mass
     mt = mesh.lump(m_pl)                   # transverse
     J = rot_scale * mesh.lump(mesh.rot_pl)
-    ka = mesh.EA / mesh.l0
-    kr = 6.0 * mesh.EI / mesh.l0
-    sa = node_sum(ka)
-    sr = node_sum(kr)
-    # transverse zig-zag stiffness per node (Gershgorin row sum): bending 24 EI/l^3 and
-    # string 2 T/l from each adjacent element
-    kt_e = 24.0 * mesh.EI / mesh.l0 ** 3 + 2.0 * abs(tension) / mesh.l0
-    st = node_sum(kt_e)
+    k = nodal_stiffness(mesh, tension)
+    sa, sr, st = k["axial"], k["rotation"], k["transverse"]
     eta = np.broadcast_to(np.asarray(axial_damping, float), mesh.l0.shape)
     se = node_sum(eta)
     om_a = np.sqrt(2.0 * sa / m)
