@@ -150,7 +150,7 @@ def cmd_reproduce(args) -> int:
     units = reproduce_units(args.name)
     jobs = max(1, min(args.jobs, len(units)))
     t0 = time.perf_counter()
-    note = ("Timings measured while `riser-verify reproduce all` ran other reports in "
+    note = (f"Timings measured while `riser-verify reproduce {args.name}` ran other units in "
             f"{jobs - 1} more worker process(es) on this {os.cpu_count()}-core machine; run "
             "`riser-verify cost SCENE` alone for uncontended timings." if jobs > 1 else "")
     if jobs == 1:
