@@ -20,8 +20,12 @@ REGRESSION_ELEMENT_LENGTH = 5.0      # m
 QUANTITIES = ("hang_off_tension", "hang_off_angle_deg", "hang_off_x", "hang_off_height",
               "tdp_x", "tdp_tension", "max_tension", "max_moment", "max_shear")
 # Relative tolerances: the BVP is deterministic to its collocation tolerance (1e-6) and
-# re-meshing noise; VFIFE stops at a residual of 1e-3 element weights, which moves the
-# static state by ~1e-5 of the tension; both far below any physical change worth noticing.
+# re-meshing noise; VFIFE is deterministic too, and 1e-4 sits between its run-to-run
+# round-off (none) and its relaxation error at the default tolerances (the cost study
+# measures ~1e-5 of the hang-off tension and up to ~2e-4 of the touchdown tension and peak
+# moment). So the store is a change detector: a change of the relaxation path (damping,
+# fictitious inertia) moves the sensitive quantities by up to their relaxation error and
+# needs `riser-verify regress --update`, with the reason in the commit.
 RTOL = {"bvp": 1.0e-5, "vfife": 1.0e-4}
 ATOL = {"hang_off_angle_deg": 1e-4, "tdp_x": 1e-2, "hang_off_x": 1e-3, "hang_off_height": 1e-3}
 
