@@ -114,3 +114,48 @@ def test_cli_has_cost_command():
     from verification.cli import build_parser
     args = build_parser().parse_args(["cost", "wang2014-baseline", "--repeats", "1"])
     assert args.func.__name__ == "cmd_cost" and args.repeats == 1
+
+
+def test_boundary_layer_is_the_touchdown_bending_length():
+    """sqrt(EI/T_tdp) for the Wang baseline from independent inputs: EI of the steel tube
+    (E pi/64 (Do^4 - Di^4), Table 1) and the touchdown tension, an input of the scene
+    (160 kN). 1e-6: the BVP reproduces its own touchdown-tension input to round-off."""
+    import math
+
+    import bvp
+    from verification.catalog import resolve
+    from verification.equivalence import DEFAULT_SEABED_LENGTH, fixed_ends_via_bvp
+    sc = resolve("wang2014-baseline")
+    vf, _ = fixed_ends_via_bvp(sc)
+    do, t = 0.2032, 0.0191
+    ei = 2.06e11 * math.pi / 64.0 * (do ** 4 - (do - 2 * t) ** 4)
+    bl = cost.boundary_layer_length(vf, DEFAULT_SEABED_LENGTH, bvp.solve(sc).profile)
+    assert bl == pytest.approx(math.sqrt(ei / 160000.0), rel=1e-6)
+
+
+def test_order_sweep_has_three_lengths_in_the_asymptotic_range():
+    """The order sweep (element_length_tight) runs 20 ... 1 m, and 0.5 m only when fewer
+    than three lengths between its finest and the boundary layer would enter the fit."""
+    from verification.catalog import resolve
+    sc = resolve("yu2021-a3")
+
+    def tight(bl):
+        return [s.value for s in cost.default_settings(sc, boundary_layer=bl)
+                if s.setting == "element_length_tight"]
+    assert tight(27.0) == [20.0, 10.0, 5.0, 2.0, 1.0]       # 20, 10, 5, 2 in the fit
+    assert tight(7.8) == [20.0, 10.0, 5.0, 2.0, 1.0, 0.5]   # 5, 2, 1 in the fit
+    check = [s for s in cost.default_settings(sc) if s.setting == "element_length_tight_check"]
+    assert len(check) == 1
+    assert check[0].solve_kwargs["tolerance"] == pytest.approx(cost.TIGHT_TOLERANCE / 10)
+    assert check[0].vfife_changes["creep_tolerance"] == pytest.approx(cost.TIGHT_CREEP / 10)
+
+
+def test_order_assessment_explains_departures():
+    ok = {"order": 2.1, "points": [5.0, 2.0, 1.0], "r2": 0.99}
+    assert "as expected" in cost.order_assessment("max_moment", ok)
+    two = {"order": 2.1, "points": [5.0, 2.0], "r2": 1.0}
+    assert "two points only" in cost.order_assessment("max_moment", two)
+    low = {"order": 0.7, "points": [20.0, 10.0, 5.0], "r2": 0.95}
+    assert cost.order_assessment("tdp_x", low).startswith("differs: the line meets")
+    assert cost.order_assessment("sag_height", {"order": None, "points": []}).startswith(
+        "not fitted")
