@@ -159,3 +159,14 @@ def test_order_assessment_explains_departures():
     assert cost.order_assessment("tdp_x", low).startswith("differs: the line meets")
     assert cost.order_assessment("sag_height", {"order": None, "points": []}).startswith(
         "not fitted")
+
+
+def test_order_assessment_flags_scattered_local_orders():
+    """A fit near 2 over local orders 1.2, 1.2, 3.1 (yu2021-a2-sheared sag heights) is not
+    reported as plainly second order."""
+    fit = {"order": 1.92, "points": [20.0, 10.0, 5.0, 2.0], "r2": 0.93,
+           "local": [(20.0, 10.0, 1.24), (10.0, 5.0, 1.16), (5.0, 2.0, 3.10)]}
+    text = cost.order_assessment("sag_height", fit)
+    assert text.startswith("order 2 on average, but the local orders in the fit scatter")
+    fit["local"] = [(20.0, 10.0, 1.93), (10.0, 5.0, 1.97), (5.0, 2.0, 1.86)]
+    assert cost.order_assessment("sag_height", fit) == "order 2, as expected"

@@ -689,16 +689,21 @@ DEPARTURE = {
                    "drag) is small, so the error mixes the O(h^2) tension with the slow "
                    "touchdown position, in proportions that change with the mesh",
     "hang_off_tension": "the weight is lumped exactly (the total weight is right on every "
-                        "mesh), so the hang-off tension errs only through the shape; the "
-                        "errors are small and few element lengths lie above the noise "
-                        "margin, so the slope rests on few points",
+                        "mesh), so the hang-off tension errs only through the shape. In a "
+                        "current the drag on the suspended length ties it to the touchdown "
+                        "position, which converges slowly while the elements are longer "
+                        "than the foundation length of the penalty seabed (see touchdown "
+                        "position); without one its errors are small and few lengths lie "
+                        "above the noise margin",
     "max_moment": "the peak moment is a maximum over the line: where two peaks (crest and "
                   "sag bend, or the touchdown region) are nearly equal, the peak taken can "
                   "change between meshes and the error jumps between their error curves",
     "crest_height": "the worst of several crests: each converges at order 2 with its own "
                     "constant, and the worst one can switch between meshes",
     "sag_height": "the worst of several sag bends: each converges at order 2 with its own "
-                  "constant, and the worst one can switch between meshes",
+                  "constant, and the worst one can switch between meshes; in a current the "
+                  "line's position also follows the slowly converging touchdown (see "
+                  "touchdown position)",
     "curve_distance": "measured against the finest VFIFE curve, not an extrapolated limit: "
                       "the finest run's own error, (h_finest/h)^2 of the error at h, cancels "
                       "part of the error of the nearest lengths and lowers the slope",
@@ -721,6 +726,13 @@ def order_assessment(q: str, fit: dict) -> str:
                 f"more than {NOISE_MARGIN:g}x the relaxation error; the others have converged "
                 "to it (see the local orders)")
     good = abs(p - EXPECTED_ORDER) <= ORDER_BAND and (fit.get("r2") or 0.0) >= 0.9
+    pts = set(fit.get("points", []))
+    inner = [lp for a, b, lp in fit.get("local", []) if a in pts and b in pts]
+    scatter = [lp for lp in inner if abs(lp - EXPECTED_ORDER) > 2.0 * ORDER_BAND]
+    if good and n >= 3 and scatter:
+        why = DEPARTURE.get(q, "")
+        return (f"order {EXPECTED_ORDER:g} on average, but the local orders in the fit "
+                f"scatter ({min(inner):.2f} to {max(inner):.2f})" + (f": {why}" if why else ""))
     if good and n >= 3:
         return f"order {EXPECTED_ORDER:g}, as expected"
     if good:
