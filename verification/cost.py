@@ -904,12 +904,15 @@ def report_markdown(st: CostStudy) -> str:
           f"{NOISE_MARGIN:g}x the order sweep's relaxation error above (then the noise moves "
           f"the log error by <= 0.1). Orders within +/-{ORDER_BAND:g} of "
           f"{EXPECTED_ORDER:g} with R^2 >= 0.9 over three or more points count as expected; "
-          "every other row says why."
+          "every other row says why. Local orders in parentheses involve a length left out "
+          "of the fit (pre-asymptotic, or with an error at the relaxation error)."
           + (f" The foundation length of the penalty seabed, (4 EI/k)^(1/4), is "
              f"{st.foundation_length:.3g} m." if st.foundation_length else ""), ""]
     rows = []
     for q, f in st.orders.items():
-        local = ", ".join(f"{a:g}-{b:g}: {p:.2f}" for a, b, p in f.get("local", []))
+        pts = set(f.get("points", []))
+        local = ", ".join((f"{a:g}-{b:g}: {p:.2f}" if a in pts and b in pts
+                           else f"({a:g}-{b:g}: {p:.2f})") for a, b, p in f.get("local", []))
         rows.append((QUANTITY_LABEL[q], f["order"], ", ".join(f"{h:g}" for h in f["points"]),
                      f.get("r2"), local, f.get("note", "vs the Richardson limit"),
                      order_assessment(q, f)))
