@@ -810,8 +810,9 @@ def _label(r: Run | None) -> str:
     h = s.solve_kwargs.get("element_length")
     if s.setting != "element_length" and h is not None:
         ctx = f", element length {h:g} m"
-    if s.setting == "element_length_tight":
-        ctx = f", static tolerance {TIGHT_TOLERANCE:g}"
+    if s.setting.startswith("element_length_tight"):
+        ctx = (f", static tolerance {s.solve_kwargs.get('tolerance'):g}, creep tolerance "
+               f"{s.vfife_changes.get('creep_tolerance'):g}")
     elif s.method == "bvp" and s.setting != "tolerance":
         ctx = f", tolerance {s.solve_kwargs.get('tolerance'):g}"
     return f"{s.setting} = {v}{ctx} ({r.wall_time_s:.3g} s)"
