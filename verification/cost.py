@@ -388,9 +388,9 @@ def _fit_context(hs, errs, h_max: float, floor: float) -> dict:
     """Local orders log(e1/e2)/log(h1/h2) of successive element lengths (all of them, for
     the report) and the largest error of the lengths in the asymptotic range (h <= h_max)
     when none of them is above the noise floor."""
+    pts = list(zip(hs, errs))
     local = [(h1, h2, math.log(e1 / e2) / math.log(h1 / h2))
-             for (h1, e1), (h2, e2) in zip(zip(hs, errs), list(zip(hs, errs))[1:])
-             if e1 and e2 and e1 > 0 and e2 > 0]
+             for (h1, e1), (h2, e2) in zip(pts, pts[1:]) if e1 and e2 and e1 > 0 and e2 > 0]
     inside = [e for h, e in zip(hs, errs) if h <= h_max and e is not None]
     below = bool(inside) and max(inside) <= floor
     return {"local": local, "below_noise": max(inside) if below else None,
@@ -474,16 +474,24 @@ def study(scene: Scene, *, repeats: int = 3, quick: bool = False, element_length
           settings: list[Setting] | None = None, progress: bool = True,
           stream=None) -> CostStudy:
     """Run the study on ``scene`` (see the module docstring)."""
+    import bvp
     import vfife.solver
     from .compare import reference_depth
-    from .equivalence import DEFAULT_SEABED_LENGTH, fixed_ends_via_bvp
+    from .equivalence import DEFAULT_SEABED_LENGTH, fixed_ends_from_bvp, fixed_ends_note
     t_start = time.perf_counter()
     repeats = max(1, int(repeats))
     notes = []
     compile_s = vfife.solver.warm_up() or vfife.solver._COMPILED.get("compile_s", 0.0)
+    # one BVP solve at the default tolerance: the fixed-ends equivalent of a Wang-form
+    # scene and the boundary layer that sets the order sweep
+    t0 = time.perf_counter()
+    pre = bvp.solve(scene) if (scene.ends.kind != "fixed" or settings is None) else None
     if scene.ends.kind != "fixed":
-        t0 = time.perf_counter()
-        vf_scene, note = fixed_ends_via_bvp(scene)
+        if not pre.converged:
+            raise RuntimeError(f"cannot build the fixed-ends scene: the BVP did not converge "
+                               f"({pre.message})")
+        vf_scene = fixed_ends_from_bvp(scene, pre, DEFAULT_SEABED_LENGTH)
+        note = fixed_ends_note(scene, vf_scene, DEFAULT_SEABED_LENGTH)
         s_shift = DEFAULT_SEABED_LENGTH
         notes.append(f"VFIFE solves the fixed-ends equivalent ({note}; seabed stiffness from "
                      f"the scene's default element length, the same for every VFIFE run so "
@@ -492,8 +500,6 @@ def study(scene: Scene, *, repeats: int = 3, quick: bool = False, element_length
     else:
         vf_scene, s_shift = scene, 0.0
     if settings is None:
-        import bvp
-        pre = bvp.solve(scene)      # for the boundary layer, which sets the order sweep
         bl = boundary_layer_length(vf_scene, s_shift, pre.profile) if pre.converged \
             else math.inf
         settings = default_settings(scene, quick, element_lengths, bl)
@@ -626,11 +632,10 @@ def _self_convergence(st: CostStudy, bvp_tol: list) -> None:
         if r.setting.method == "vfife" and r.profile is not None:
             lo, hi = max(fin.s[0], r.profile.s[0]), min(fin.s[-1], r.profile.s[-1])
             r.self_errors["curve_distance"] = curve_distance(fin, r.profile, (lo, hi))[0] / depth
-    cd = [(r.setting.value, r.self_errors["curve_distance"]) for r in order_sweep[:-1]
-          if r.setting.value <= st.boundary_layer]
+    cd_all = [(r.setting.value, r.self_errors["curve_distance"]) for r in order_sweep[:-1]]
+    cd = [(h, e) for h, e in cd_all if h <= st.boundary_layer]
     st.orders["curve_distance"] = fit_order([h for h, _ in cd], [e for _, e in cd],
                                             floor.get("curve_distance", 0.0))
-    cd_all = [(r.setting.value, r.self_errors["curve_distance"]) for r in order_sweep[:-1]]
     st.orders["curve_distance"].update(_fit_context(
         [h for h, _ in cd_all], [e for _, e in cd_all], st.boundary_layer,
         floor.get("curve_distance", 0.0)))
@@ -821,6 +826,7 @@ def _label(r: Run | None) -> str:
 def report_markdown(st: CostStudy) -> str:
     sc = st.scene
     ref = st.reference
+    compile_s = next((r.compile_time_s for r in st.runs if r.method == "vfife"), 0)
     L = [f"# Accuracy versus cost: `{sc.name}`", "", GENERATED_NOTE, "",
          f"- Scene: {sc.title or sc.name}.",
          f"- Reference: BVP at tolerance {ref.setting.value:g} ({ref.size} nodes, "
@@ -828,7 +834,7 @@ def report_markdown(st: CostStudy) -> str:
          f"({'water depth' if sc.water_depth else 'hang-off height'}); tensions and moment "
          "by the reference value.",
          f"- Timing: median of {st.repeats} runs after a warm-up; the Numba compilation (or "
-         f"cache load) of VFIFE, {next((r.compile_time_s for r in st.runs if r.method == 'vfife'), 0):.2f} s "
+         f"cache load) of VFIFE, {compile_s:.2f} s "
          "in this process, is reported separately (`compile_time_s`). Runs that did not "
          "converge are timed once. Study wall time "
          f"{st.elapsed_s:.0f} s.",

@@ -66,8 +66,9 @@ first mesh (continuation in buoyancy; the equilibrium is that of the full weight
 Programmatic knobs (``scene.vfife`` entries, not in the scene file schema):
 ``static_damping``, ``static_damping_fine``, ``static_damping_current``,
 ``creep_tolerance`` (fraction of the line length; 0 turns the creep test off),
-``static_axial_damping`` (0 turns the dashpot off). The relaxation takes ~sqrt(EA) steps (the axial wave sets the step; the
-relaxation time is set by the damping and the transverse modes, not by EA).
+``static_axial_damping`` (0 turns the dashpot off). The relaxation takes ~sqrt(EA) steps
+(the axial wave sets the step; the relaxation time is set by the damping and the
+transverse modes, not by EA).
 Converged when the largest nodal out-of-balance force (free nodes) is below
 ``tolerance`` x the weight of one element, and the largest nodal moment below the same
 fraction of that weight x the element length.
@@ -362,17 +363,17 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
         if si < len(stages) - 1:
             budget = max(1, budget // 2)
         iinfo: dict = {}
-        if fictitious and kseabed > 0.0:
-            # critical contact damping (it vanishes at rest): undamped, a node resting on
-            # the penalty spring can bounce without end, because the explicit step across
-            # the contact kink feeds it energy. With a spring resolved by ~1.6 rad per step
-            # (hard-coarse-elements, 20 m: 1.14 element weights after 5e6 steps), and as a
-            # period-10-step limit cycle on a well resolved one (yu2021-a3, 4 m stage with
-            # a 1e-7 creep test: node 2 lifting 2e-5 m off the seabed every cycle, stuck
-            # at ~0.8 element weights for 1.5e7 steps). The fictitious contact mass of
-            # static_inertia keeps the damped spring stable at the axial step.
-            new.seabed_zeta = max(new.seabed_zeta, min(zeta_c, 1.0))
         if fictitious:
+            if kseabed > 0.0:
+                # critical contact damping (it vanishes at rest): undamped, a node resting on
+                # the penalty spring can bounce without end, because the explicit step across
+                # the contact kink feeds it energy. With a spring resolved by ~1.6 rad per step
+                # (hard-coarse-elements, 20 m: 1.14 element weights after 5e6 steps), and as a
+                # period-10-step limit cycle on a well resolved one (yu2021-a3, 4 m stage with
+                # a 1e-7 creep test: node 2 lifting 2e-5 m off the seabed every cycle, stuck
+                # at ~0.8 element weights for 1.5e7 steps). The fictitious contact mass of
+                # static_inertia keeps the damped spring stable at the axial step.
+                new.seabed_zeta = max(new.seabed_zeta, min(zeta_c, 1.0))
             contact = None
             if scene.seabed is not None:
                 band = 0.1 * max(abs(float(scene.ends.hang_off[1])), 1.0)
