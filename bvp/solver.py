@@ -2,18 +2,24 @@
 
 Public entry: :func:`solve` (scene -> :class:`riser.result.SolveResult`).
 
-Ends (``scene.ends.kind``):
+The model (``bvp/equations.py``) is chosen by the scene: ``scene.axial_model``
+('extensible', strain T/EA, or the 'inextensible' limit) and ``scene.seabed_model``
+('elastic' Winkler foundation of [seabed] stiffness, or the 'rigid' limit). Ends
+(``scene.ends.kind``):
 
-- ``tdp_tension`` (Wang form): touchdown at the origin with theta = 0, M = 0, T = T_TDP;
-  M = 0 at the free top. The hang-off point is an output.
-- ``hang_off_angle``: touchdown at the origin (theta = 0, M = 0); hang-off height and
-  angle given, M = 0 there; the suspended length of the first segment is an unknown
-  parameter, the TDP tension an output.
-- ``fixed`` with a ``[seabed]`` and the anchor on it (y = 0): the grounded part from the
+- ``tdp_tension`` (Wang form, rigid seabed): touchdown at the origin with theta = 0,
+  M = 0, T = T_TDP; M = 0 at the free top. The hang-off point is an output.
+- ``hang_off_angle`` (rigid seabed): touchdown at the origin (theta = 0, M = 0); hang-off
+  height and angle given, M = 0 there; the suspended length of the first segment is an
+  unknown parameter, the TDP tension an output.
+- ``fixed`` on an elastic seabed (the default with a [seabed]): the whole line from the
+  anchor to the hang-off, positions given and M = 0 at both; wherever it is below y = 0
+  the seabed pushes it up with k max(-y, 0), so the lift-off point (any contact) is found
+  by the solver, with no touchdown condition.
+- ``fixed`` on a rigid seabed with the anchor on it (y = 0): the grounded part from the
   anchor is straight and frictionless, its tension the TDP tension plus the tangential
-  drag of the current at the seabed; the touchdown position
-  (i.e. the suspended length of the first segment) is an unknown parameter; M = 0 at the
-  touchdown and the hang-off, positions given.
+  drag of the current at the seabed; the touchdown position (the suspended length of the
+  first segment) is an unknown parameter; M = 0 at the touchdown and the hang-off.
 - ``fixed`` otherwise: pinned-pinned free-hanging line, positions given and M = 0 at both.
 
 Unknown T(0) is simply a free state value. Continuity of x, y, theta, M, F, T at every
@@ -29,23 +35,20 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.integrate import solve_bvp
-from scipy.optimize import brentq, least_squares
 
 from riser.errors import UnsupportedSceneError
-from riser.profile import Profile
 from riser.result import SolveResult
 from riser.scene import Scene
 from riser.sections import segment_properties
 
+from . import guess as guesses
 from .catenary import catenary_state
-from .equations import IF, IM, IT, ITH, IX, IY, NSTATE, BeamModel
+from .equations import IM, IT, ITH, IX, IY, NSTATE, BeamModel
+from .guess import BVPFailure
 from .mesh import clustered_mesh
+from .output import build_profile, grounded_drag
 
 DEFAULTS = {"tolerance": 1.0e-6, "max_nodes": 30000, "initial_nodes": 400}
-
-
-class BVPFailure(RuntimeError):
-    """Raised internally when no starting guess or no solution can be found."""
 
 
 @dataclass
@@ -56,19 +59,30 @@ class _Problem:
     bc: object
     guess_p: np.ndarray
     form: str
-    seabed_start: float = 0.0          # x of the anchor (form fixed+seabed)
+    seabed_start: float = 0.0          # x of the anchor (fixed forms)
     anchor_xy: tuple = (0.0, 0.0)
     first_total: float = 0.0           # full length of the first segment [m]
     guess: object = None               # callable(tau) -> scaled state (6n, m)
     notes: list = field(default_factory=list)
 
 
+def model_of(scene: Scene) -> dict:
+    """The continuum model the BVP solves for ``scene`` (goes into summary.json)."""
+    out = {"axial": scene.axial_model, "seabed": scene.seabed_model}
+    if scene.seabed_model == "elastic":
+        out["seabed_stiffness"] = scene.seabed.stiffness
+    return out
+
+
 def effects_of(scene: Scene) -> list[str]:
     """Physical effects the BVP includes for this scene."""
     eff = ["weight", "bending"]
+    if scene.axial_model == "extensible":
+        eff.append("axial")
     if scene.current is not None:
         eff.append("current_drag")
-    if scene.ends.kind != "fixed" or (scene.seabed is not None and scene.ends.anchor[1] == 0.0):
+    if scene.seabed_model is not None and (scene.ends.kind != "fixed" or scene.seabed_model ==
+                                           "elastic" or scene.ends.anchor[1] == 0.0):
         eff.append("seabed")
     return eff
 
@@ -95,9 +109,12 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
             "is out of plane; the bvp method is planar only (use --method vfife)")
 
     effects = effects_of(scene)
-    info = {"tolerance": settings["tolerance"], "warnings": []}
+    info = {"tolerance": settings["tolerance"], "model": model_of(scene), "warnings": []}
     if scene.dynamics is not None:
         info["warnings"].append("bvp solves statics only: [dynamics] ignored")
+    if scene.seabed is not None and scene.seabed.friction > 0.0:
+        info["warnings"].append(f"bvp seabed is frictionless: seabed.friction = "
+                                f"{scene.seabed.friction:g} ignored")
 
     def fail(msg: str) -> SolveResult:
         return SolveResult("bvp", scene.name, False, msg, None, time.perf_counter() - t0,
@@ -119,7 +136,7 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
     info["iterations"] = int(sol.niter)
     info["residual"] = float(np.max(sol.rms_residuals))
     try:
-        profile, checks = _profile(prob, sol, scene)
+        profile, checks = build_profile(prob, sol, scene.water_depth)
     except BVPFailure as exc:
         return fail(str(exc))
     info.update(checks)
@@ -132,6 +149,8 @@ def _build_problem(scene: Scene) -> _Problem:
     props = segment_properties(scene)
     n = len(props)
     EI = np.array([p.EI for p in props])
+    EA = (np.array([p.EA for p in props], float) if scene.axial_model == "extensible"
+          else np.full(n, np.inf))
     w = np.array([p.weight for p in props])
     L = np.array([p.length for p in props])
     c_n = np.array([p.drag_normal_coef for p in props])
@@ -144,58 +163,88 @@ def _build_problem(scene: Scene) -> _Problem:
         speed = lambda y: sign * cur.speed(y)                     # noqa: E731
         grad = lambda y: sign * cur.speed_gradient(y)             # noqa: E731
 
-    Wabs = float(np.sum(np.abs(w) * L)) or 1.0
     length_scale = float(np.sum(L))
+    k_seabed = scene.seabed.stiffness if scene.seabed_model == "elastic" else 0.0
 
     # ---- catenary starting guess for each form: (H, V0, suspended lengths, origin)
     form = ends.kind
     anchor = (0.0, 0.0)
     free_first = False
+    taut = False
     if form == "tdp_tension":
         H, V0, Ls = ends.tdp_tension, 0.0, L.copy()
     elif form == "hang_off_angle":
         free_first = True
-        H, V0, Ls = _guess_hang_off_angle(w, L, ends.hang_off_height,
-                                          math.radians(ends.hang_off_angle_deg))
+        H, V0, Ls = guesses.hang_off_angle(w, L, ends.hang_off_height,
+                                           math.radians(ends.hang_off_angle_deg))
     else:
         anchor = ends.anchor
         dx = ends.hang_off[0] - anchor[0]
         dy = ends.hang_off[1] - anchor[1]
-        lifted = False
-        if scene.seabed is not None and anchor[1] == 0.0:
+        on_seabed = scene.seabed is not None and anchor[1] == 0.0
+        found = False
+        if on_seabed:
             try:
-                H, V0, Ls = _guess_grounded(w, L, dx, dy)
-                form = "fixed_seabed"
-                free_first = True
+                H, V0, Ls = guesses.grounded(w, L, dx, dy)
+                found = True
             except BVPFailure:
-                # no touchdown ahead of the anchor: the line may lift off at the anchor,
-                # i.e. hang pinned there and rise from the seabed (checked after solving)
-                lifted = True
-        if form != "fixed_seabed":
-            form = "fixed_lifted" if lifted else "fixed_free"
-            H, V0, Ls = _guess_free_hanging(w, L, dx, dy)
+                pass
+        if k_seabed > 0.0:
+            form = "fixed_elastic"
+        elif found:
+            form, free_first = "fixed_seabed", True
+        else:
+            # no touchdown ahead of the anchor: the line may lift off at the anchor,
+            # i.e. hang pinned there and rise from the seabed (checked after solving)
+            form = "fixed_lifted" if on_seabed else "fixed_free"
+        if not found:
+            try:
+                H, V0, Ls = guesses.free_hanging(w, L, dx, dy)
+            except BVPFailure:
+                if scene.axial_model != "extensible":
+                    raise
+                taut = True
+                H, V0, Ls = 1.0, 0.0, L.copy()
 
-    ox = anchor[0] + (L[0] - Ls[0] if form == "fixed_seabed" else 0.0)
+    grounded = float(L[0] - Ls[0]) if form in ("fixed_seabed", "fixed_elastic") else 0.0
+    ox = anchor[0] + grounded
     oy = anchor[1]
     cat_top_T = float(catenary_state(np.array([Ls.sum()]), w, Ls, H, V0)["tension"][0])
     Ts = max(cat_top_T, H, 1.0)
+    if taut:
+        Ts = max(Ts, float(np.min(EA)) * 1e-3)
     wref = max(float(np.max(np.abs(w))), Ts / length_scale * 1e-3)
     EImax = float(np.max(EI))
     scale = np.array([length_scale, length_scale, 1.0, EImax * wref / Ts,
                       wref * math.sqrt(EImax / Ts), Ts])
 
-    model = BeamModel(EI=EI, w=w, c_n=c_n, c_t=c_t, lengths=Ls if not free_first else L.copy(),
-                      scale=scale, speed=speed, speed_gradient=grad,
-                      free_first_length=free_first, length_scale=length_scale)
-    if free_first:
-        model.lengths = L.copy()
+    model = BeamModel(EI=EI, EA=EA, w=w, c_n=c_n, c_t=c_t, lengths=L.copy() if free_first or
+                      form == "fixed_elastic" else Ls, scale=scale, k_seabed=k_seabed,
+                      speed=speed, speed_gradient=grad, free_first_length=free_first,
+                      length_scale=length_scale)
     p0 = np.array([Ls[0] / length_scale]) if free_first else np.zeros(0)
+    sink = max(float(w[0]), 0.0) / k_seabed if k_seabed > 0.0 else 0.0
 
-    def guess(tau: np.ndarray) -> np.ndarray:
-        return _catenary_guess(tau, w, Ls, EI, H, V0, ox, oy, scale)
+    if taut:
+        def guess(tau: np.ndarray) -> np.ndarray:
+            return guesses.taut_guess(tau, L, EA, dx, dy, anchor[0], anchor[1], scale)
+    elif form == "fixed_elastic":
+        def guess(tau: np.ndarray) -> np.ndarray:
+            return guesses.state_guess(tau, w, Ls, EI, H, V0, ox, oy, scale, grounded, sink)
+    else:
+        def guess(tau: np.ndarray) -> np.ndarray:
+            return guesses.state_guess(tau, w, Ls, EI, H, V0, ox, oy, scale)
 
-    # ---- boundary conditions (scaled residuals), ya/yb shape (6n,)
-    sc = scale
+    return _Problem(model=model, bc=_boundary_conditions(form, scene, model, L), guess_p=p0,
+                    form=form, seabed_start=anchor[0], anchor_xy=anchor,
+                    first_total=float(L[0]), guess=guess)
+
+
+def _boundary_conditions(form: str, scene: Scene, model: BeamModel, L: np.ndarray):
+    """bc(ya, yb[, p]) -> scaled residuals; ya/yb have shape (6n,)."""
+    ends = scene.ends
+    n = model.n_seg
+    sc = model.scale
     top = (n - 1) * NSTATE
 
     def continuity(ya, yb):
@@ -216,134 +265,27 @@ def _build_problem(scene: Scene) -> _Problem:
             return np.array([ya[IX], ya[IY], ya[ITH], ya[IM], *continuity(ya, yb),
                              yb[top + IM], yb[top + IY] - Hh, yb[top + ITH] - alpha])
     elif form == "fixed_seabed":
-        xa = anchor[0] / sc[IX]
-        L0 = L[0] / sc[IX]
+        xa = ends.anchor[0]
         xh, yh = ends.hang_off[0] / sc[IX], ends.hang_off[1] / sc[IY]
+        L0 = float(L[0])
 
         def bc(ya, yb, p):
-            # touchdown at x = anchor + grounded length = anchor + (L0 - suspended)
-            return np.array([ya[IX] - (xa + L0 - p[0]), ya[IY], ya[ITH], ya[IM],
+            # touchdown at x = anchor + the stretched grounded length (L0 - suspended):
+            # integral of 1 + T/EA with T = T_tdp + f_t (g - s) along the grounded part
+            g = L0 - p[0] * model.length_scale
+            T0 = ya[IT] * sc[IT]
+            reach = g + (T0 * g + 0.5 * grounded_drag(model) * g * g) * model.inv_EA[0]
+            return np.array([ya[IX] - (xa + reach) / sc[IX], ya[IY], ya[ITH], ya[IM],
                              *continuity(ya, yb), yb[top + IM], yb[top + IX] - xh,
                              yb[top + IY] - yh])
     else:
-        xa, ya0 = anchor[0] / sc[IX], anchor[1] / sc[IY]
+        xa, ya0 = ends.anchor[0] / sc[IX], ends.anchor[1] / sc[IY]
         xh, yh = ends.hang_off[0] / sc[IX], ends.hang_off[1] / sc[IY]
 
         def bc(ya, yb, p=None):
             return np.array([ya[IX] - xa, ya[IY] - ya0, ya[IM], *continuity(ya, yb),
                              yb[top + IM], yb[top + IX] - xh, yb[top + IY] - yh])
-
-    return _Problem(model=model, bc=bc, guess_p=p0, form=form, seabed_start=anchor[0],
-                    anchor_xy=anchor, first_total=float(L[0]), guess=guess)
-
-
-def _catenary_guess(tau, w, Ls, EI, H, V0, ox, oy, scale) -> np.ndarray:
-    n = len(Ls)
-    edges = np.concatenate([[0.0], np.cumsum(Ls)])
-    Y = np.empty((n * NSTATE, tau.size))
-    for k in range(n):
-        s = edges[k] + Ls[k] * tau
-        st = catenary_state(s, w, Ls, H, V0, ox, oy)
-        kap = st["curvature"]
-        M = EI[k] * kap
-        # d(kappa)/ds for kappa = w H / (H^2 + V^2), dV/ds = w
-        F = EI[k] * (-2.0 * w[k] ** 2 * H * st["V"] / (H * H + st["V"] ** 2) ** 2)
-        rows = [st["x"], st["y"], st["theta"], M, F, st["tension"]]
-        for i, r in enumerate(rows):
-            Y[k * NSTATE + i] = r / scale[i]
-    return Y
-
-
-def _guess_hang_off_angle(w, L, height, alpha):
-    """Suspended first length and H so that the catenary from the TDP reaches the given
-    height with the given angle."""
-    rest = float(np.sum(w[1:] * L[1:]))
-
-    def forces(l1):
-        Vtop = w[0] * l1 + rest
-        return Vtop / math.tan(alpha), Vtop
-
-    def resid(l1):
-        H, Vtop = forces(l1)
-        if H <= 0:
-            return -height
-        Ls = L.copy()
-        Ls[0] = l1
-        return float(catenary_state(np.array([Ls.sum()]), w, Ls, H, 0.0)["y"][0]) - height
-
-    lo, hi = 1e-3 * L[0], 20.0 * max(L[0], height)
-    grid = np.geomspace(lo, hi, 60)
-    vals = [resid(g) for g in grid]
-    for a, b, fa, fb in zip(grid[:-1], grid[1:], vals[:-1], vals[1:]):
-        if fa * fb <= 0:
-            l1 = brentq(resid, a, b, xtol=1e-9 * L[0])
-            H, _ = forces(l1)
-            Ls = L.copy()
-            Ls[0] = l1
-            return H, 0.0, Ls
-    raise BVPFailure("no catenary with a touchdown reaches the given hang_off_height with "
-                     "hang_off_angle_deg; check the angle, the height and the weights")
-
-
-def _guess_grounded(w, L, dx, dy):
-    """Catenary from a touchdown on the seabed (theta = 0) to a hang-off at (dx, dy) from the
-    anchor, with the grounded length L[0] - l1 straight on the seabed."""
-    def top(H, l1):
-        Ls = L.copy()
-        Ls[0] = l1
-        st = catenary_state(np.array([Ls.sum()]), w, Ls, H, 0.0)
-        return float(st["x"][0]) + (L[0] - l1), float(st["y"][0])
-
-    def H_for(l1):
-        f = lambda lh: top(math.exp(lh), l1)[1] - dy                # noqa: E731
-        lo, hi = math.log(1e-6 * np.sum(np.abs(w) * L) + 1e-3), math.log(1e3 * np.sum(np.abs(w) * L) + 1e3)
-        if f(lo) * f(hi) > 0:
-            return None
-        return math.exp(brentq(f, lo, hi, xtol=1e-12))
-
-    def g(l1):
-        H = H_for(l1)
-        if H is None:
-            return None
-        return top(H, l1)[0] - dx
-
-    grid = np.linspace(L[0], 1e-3 * L[0], 80)
-    prev = None
-    for l1 in grid:
-        v = g(l1)
-        if v is None:
-            continue
-        if prev is not None and prev[1] * v <= 0:
-            f = lambda z: g(z) if g(z) is not None else 0.0         # noqa: E731
-            l1s = brentq(f, l1, prev[0], xtol=1e-9 * L[0])
-            Ls = L.copy()
-            Ls[0] = l1s
-            return H_for(l1s), 0.0, Ls
-        prev = (l1, v)
-    raise BVPFailure("no touchdown found within the first segment for the given anchor and "
-                     "hang_off (the line is too short, too long or the first segment does not "
-                     "reach the seabed): lengthen segments[0] or move the ends")
-
-
-def _guess_free_hanging(w, L, dx, dy):
-    """Catenary between two pinned ends: unknown H and the vertical force V0 at the anchor."""
-    W = float(np.sum(np.abs(w) * L)) or 1.0
-    total = float(np.sum(w * L))
-
-    def resid(z):
-        H = math.exp(z[0]) * W
-        st = catenary_state(np.array([L.sum()]), w, L, H, z[1] * W)
-        return [(st["x"][0] - dx) / L.sum(), (st["y"][0] - dy) / L.sum()]
-
-    best = None
-    for h0 in (0.05, 0.3, 1.0, 3.0):
-        r = least_squares(resid, [math.log(h0), -0.5 * total / W], xtol=1e-14, ftol=1e-14)
-        if best is None or r.cost < best.cost:
-            best = r
-    if best.cost > 1e-16:
-        raise BVPFailure("no free-hanging catenary joins the anchor and the hang-off "
-                         "(line too short for the span?)")
-    return math.exp(best.x[0]) * W, best.x[1] * W, L.copy()
+    return bc
 
 
 # ---------------------------------------------------------------------------- solving
@@ -435,111 +377,3 @@ def _good(sol, prob: _Problem) -> bool:
         if l1 <= 0.0 or (prob.form == "fixed_seabed" and l1 > prob.first_total * (1 + 1e-9)):
             return False
     return True
-
-
-# ---------------------------------------------------------------------------- output
-def _profile(prob: _Problem, sol, scene: Scene) -> tuple[Profile, dict]:
-    model = prob.model
-    p = sol.p if sol.p is not None else np.zeros(0)
-    Ls = model.segment_lengths(p)
-    n = model.n_seg
-    EI = model.EI
-    lam_min = float(np.min(np.sqrt(EI / max(abs(float(np.max(sol.y[IT::NSTATE]))) * model.scale[IT], 1.0))))
-    step = float(np.clip(lam_min / 8.0, 0.05, 0.5))
-    cols = {k: [] for k in ("s", "x", "y", "theta", "M", "F", "T", "kappa")}
-    s0 = 0.0
-    grounded = 0.0
-    if prob.form == "fixed_seabed":
-        grounded = prob.first_total - Ls[0]
-    for k in range(n):
-        m = max(20, int(math.ceil(Ls[k] / step)))
-        tau = np.union1d(np.linspace(0.0, 1.0, m + 1), sol.x)
-        if k > 0:
-            tau = tau[1:]
-        Y = sol.sol(tau)[k * NSTATE:(k + 1) * NSTATE] * model.scale[:, None]
-        cols["s"].append(grounded + s0 + Ls[k] * tau)
-        cols["x"].append(Y[IX])
-        cols["y"].append(Y[IY])
-        cols["theta"].append(Y[ITH])
-        cols["M"].append(Y[IM])
-        cols["F"].append(Y[IF])
-        cols["T"].append(Y[IT])
-        cols["kappa"].append(Y[IM] / EI[k])
-        s0 += Ls[k]
-    c = {k: np.concatenate(v) for k, v in cols.items()}
-    tdp_s = None
-    checks: dict = {}
-    if prob.form in ("tdp_tension", "hang_off_angle", "fixed_seabed", "fixed_lifted"):
-        tdp_s = grounded
-    if prob.form == "fixed_lifted":
-        checks["lifted_off_anchor"] = True
-        if c["theta"][0] < -1e-6:
-            raise BVPFailure(
-                "the line is too short to reach the seabed ahead of the anchor and would "
-                f"leave the anchor downwards (angle {math.degrees(c['theta'][0]):.2f} deg): "
-                "no touchdown in the first segment")
-    if prob.form == "fixed_seabed" and grounded > 0.0:
-        sg = np.linspace(0.0, grounded, max(2, int(math.ceil(grounded / 1.0)) + 1))[:-1]
-        # grounded, straight and frictionless: T' = -f_t (eq. 2 with theta = M = F = 0), so
-        # the tangential drag of the current at the seabed changes the tension linearly
-        T0 = c["T"][0]
-        f_t = 0.0
-        if model.speed is not None:
-            V0 = model.drag_factor * float(model.speed(np.array([0.0]))[0])
-            f_t = float(model.c_t[0]) * abs(V0) * V0
-        pre = {"s": sg, "x": prob.anchor_xy[0] + sg, "y": np.zeros_like(sg),
-               "theta": np.zeros_like(sg), "M": np.zeros_like(sg), "F": np.zeros_like(sg),
-               "T": T0 + f_t * (grounded - sg), "kappa": np.zeros_like(sg)}
-        c = {k: np.concatenate([pre[k], c[k]]) for k in c}
-    # joints are evaluated from both sides; drop stations closer than 1 um
-    keep = np.concatenate([[True], np.diff(c["s"]) > 1e-6])
-    c = {k: v[keep] for k, v in c.items()}
-    checks["first_segment_suspended_length"] = float(Ls[0])
-    if prob.form == "fixed_seabed":
-        checks["grounded_length"] = float(grounded)
-    prof = Profile(s=c["s"], x=c["x"], y=c["y"], z=np.zeros_like(c["s"]), theta=c["theta"],
-                   tension=c["T"], moment=np.abs(c["M"]), shear=np.abs(c["F"]),
-                   curvature=np.abs(c["kappa"]), tdp_s=tdp_s)
-    if not prof.is_finite():
-        raise BVPFailure("solution contains NaN or inf")
-    # independent self-checks of the converged solution
-    checks["equilibrium_residual"] = _equilibrium_residual(model, Ls, grounded, c)
-    if tdp_s is not None:
-        susp = c["s"] > tdp_s + 1e-9
-        ymin = float(np.min(c["y"][susp])) if np.any(susp) else 0.0
-        checks["min_suspended_height"] = ymin
-        if ymin < -1e-2:
-            i = int(np.argmin(np.where(susp, c["y"], np.inf)))
-            raise BVPFailure(f"the suspended line passes {abs(ymin):.3g} m below the seabed at "
-                             f"s = {c['s'][i]:.1f} m: a second touchdown, which this model "
-                             "(one touchdown point) cannot represent")
-    if scene.water_depth is not None and float(np.max(c["y"])) > scene.water_depth + 1e-3:
-        i = int(np.argmax(c["y"]))
-        raise BVPFailure(f"the line rises above the water surface (y = {c['y'][i]:.1f} m > "
-                         f"water_depth {scene.water_depth:g} m at s = {c['s'][i]:.1f} m); the "
-                         "model is fully submerged: reduce the buoyancy or the TDP tension")
-    if checks["equilibrium_residual"] > 1e-3:
-        raise BVPFailure(f"global force balance violated: residual "
-                         f"{checks['equilibrium_residual']:.2e} of the max tension")
-    return prof, checks
-
-
-def _equilibrium_residual(model: BeamModel, Ls: np.ndarray, grounded: float, c: dict) -> float:
-    """|P(top) - P(tdp) + integral of the external load| / max tension over the suspended
-    line, where the internal force is P = T t - F n, t = (cos, sin), n = (-sin, cos), and
-    weight and drag are integrated by the trapezoidal rule (an independent check of the
-    collocation solution: O(ds^2) quadrature error)."""
-    sel = c["s"] >= grounded - 1e-12
-    s, y, th, T, F = (c[k][sel] for k in ("s", "y", "theta", "T", "F"))
-    t = np.stack([np.cos(th), np.sin(th)])
-    nrm = np.stack([-np.sin(th), np.cos(th)])
-    P = T * t - F * nrm
-    k = np.searchsorted(np.cumsum(Ls)[:-1], s - grounded, side="right")
-    load = np.stack([np.zeros_like(s), -model.w[k]])
-    if model.speed is not None:
-        V = model.drag_factor * model.speed(y)
-        Vn = -V * np.sin(th)
-        Vt = V * np.cos(th)
-        load = load + model.c_n[k] * np.abs(Vn) * Vn * nrm + model.c_t[k] * np.abs(Vt) * Vt * t
-    res = P[:, -1] - P[:, 0] + np.trapezoid(load, s, axis=1)
-    return float(np.hypot(*res) / max(np.max(np.abs(c["T"])), 1.0))

@@ -47,7 +47,8 @@ class LineType:
     """Cross-section and material of a pipe.
 
     Attributes: outer/inner diameter [m]; mass_per_length of the pipe wall [kg/m];
-    axial_stiffness EA [N]; bending_stiffness EI [N m2]; torsional_stiffness GJ [N m2];
+    axial_stiffness EA [N] (None when not given: only an inextensible model may omit it);
+    bending_stiffness EI [N m2]; torsional_stiffness GJ [N m2];
     drag_normal, drag_tangential, added_mass [-]; contents_density [kg/m3].
     """
 
@@ -55,7 +56,7 @@ class LineType:
     outer_diameter: float
     inner_diameter: float
     mass_per_length: float
-    axial_stiffness: float
+    axial_stiffness: float | None
     bending_stiffness: float
     torsional_stiffness: float
     drag_normal: float = 1.0
@@ -205,7 +206,26 @@ class Scene:
     dynamics: Dynamics | None = None
     bvp: dict = field(default_factory=dict)
     vfife: dict = field(default_factory=dict)
+    model: dict = field(default_factory=dict)
     source: str = "<scene>"
+
+    @property
+    def axial_model(self) -> str:
+        """'extensible' (strain T/EA) or 'inextensible' (the Wang limit): the [model] axial
+        key, else 'inextensible' for the Wang end forms and 'extensible' for fixed ends."""
+        return self.model.get("axial", "extensible" if self.ends.kind == "fixed"
+                              else "inextensible")
+
+    @property
+    def seabed_model(self) -> str | None:
+        """'elastic' (unilateral Winkler foundation of [seabed] stiffness), 'rigid' (a
+        touchdown point with theta = M = 0 on y = 0: the Wang limit), or None (fixed ends
+        without a [seabed]). The Wang end forms are rigid by construction."""
+        if self.ends.kind != "fixed":
+            return "rigid"
+        if self.seabed is None:
+            return None
+        return self.model.get("seabed", "elastic")
 
     @property
     def total_length(self) -> float:
@@ -290,6 +310,8 @@ def scene_from_dict(data: dict, source: str = "<scene>") -> Scene:
     dyn_t = root.table("dynamics")
     dynamics = _read_dynamics(dyn_t) if dyn_t is not None else None
 
+    model_t = root.table("model")
+    model = _read_model(model_t) if model_t is not None else {}
     bvp_t = root.table("bvp")
     bvp = _read_bvp(bvp_t) if bvp_t is not None else {}
     vf_t = root.table("vfife")
@@ -299,7 +321,8 @@ def scene_from_dict(data: dict, source: str = "<scene>") -> Scene:
     scene = Scene(name=name, title=title, provenance=provenance, gravity=gravity,
                   water_density=water_density, water_depth=water_depth, current=current,
                   seabed=seabed, line_types=line_types, segments=segments, ends=ends,
-                  dynamics=dynamics, bvp=bvp, vfife=vfife, source=source)
+                  dynamics=dynamics, bvp=bvp, vfife=vfife, model=model, source=source)
+    _check_model(scene)
     _check_geometry(scene)
     return scene
 
@@ -343,10 +366,9 @@ def _read_line_type(t: Table, name: str) -> LineType:
     lo, hi = LIMITS["youngs_modulus"]
     E = t.number("youngs_modulus", None, ge=lo, le=hi, unit="Pa")
     smax = LIMITS["stiffness"]
-    if E is None:
-        if not t.has("axial_stiffness") or not t.has("bending_stiffness"):
-            missing = "axial_stiffness" if not t.has("axial_stiffness") else "bending_stiffness"
-            raise t.error(missing, "required when youngs_modulus is not given")
+    if E is None and not t.has("bending_stiffness"):
+        raise t.error("bending_stiffness", "required when youngs_modulus is not given")
+    # axial_stiffness may be missing here: _check_model requires it for an extensible model
     EA = t.number("axial_stiffness", None if E is None else E * area, gt=0.0, le=smax, unit="N")
     EI = t.number("bending_stiffness", None if E is None else E * inertia, gt=0.0, le=smax,
                   unit="N m2")
@@ -465,6 +487,35 @@ def _read_bvp(t: Table) -> dict:
     return out
 
 
+MODEL_CHOICES = {"axial": ("extensible", "inextensible"), "seabed": ("elastic", "rigid")}
+
+
+def _read_model(t: Table) -> dict:
+    out = {key: t.string(key, None, choices=choices) for key, choices in MODEL_CHOICES.items()}
+    t.finish()
+    return {k: v for k, v in out.items() if v is not None}
+
+
+def _check_model(scene: Scene) -> None:
+    """The [model] choices fit the end form, the seabed and the line types."""
+    src = scene.source
+    wang = scene.ends.kind != "fixed"
+    if scene.model.get("seabed") == "elastic" and wang:
+        raise SceneError(src, "model.seabed", f"'elastic' needs fixed ends (anchor + hang_off); "
+                         f"the '{scene.ends.kind}' form puts the touchdown on a rigid seabed "
+                         "(use 'rigid' or omit the key)")
+    if "seabed" in scene.model and not wang and scene.seabed is None:
+        raise SceneError(src, "model.seabed", "needs a [seabed] table (with its stiffness)")
+    if scene.axial_model == "extensible":
+        for name, lt in scene.line_types.items():
+            if lt.axial_stiffness is None:
+                why = ("the default for fixed ends" if "axial" not in scene.model
+                       else "[model] axial")
+                raise SceneError(src, f"line_types.{name}.axial_stiffness",
+                                 f"required for the extensible model ({why}): give it [N] or "
+                                 "youngs_modulus, or set [model] axial = \"inextensible\"")
+
+
 def _read_vfife(t: Table) -> dict:
     out = {
         "element_length": t.number("element_length", 1.0, gt=0.0, le=1000.0, unit="m"),
@@ -497,9 +548,13 @@ def _check_geometry(scene: Scene) -> None:
     src = scene.source
     if e.kind == "fixed":
         chord = math.hypot(e.hang_off[0] - e.anchor[0], e.hang_off[1] - e.anchor[1])
-        if scene.total_length <= chord:
-            raise SceneError(src, "segments", f"line length {scene.total_length:g} m is shorter than "
-                             f"the distance {chord:g} m between anchor and hang_off")
+        # an extensible line no longer than the chord is taut (it stretches); only the
+        # inextensible model cannot reach
+        if scene.axial_model == "inextensible" and scene.total_length <= chord:
+            raise SceneError(src, "segments", f"line length {scene.total_length:g} m is not longer "
+                             f"than the distance {chord:g} m between anchor and hang_off: an "
+                             "inextensible line cannot reach ([model] axial = \"extensible\" "
+                             "lets it stretch)")
         if scene.water_depth is not None and e.hang_off[1] > scene.water_depth:
             raise SceneError(src, "ends.hang_off[1]", f"must be <= water_depth "
                              f"{scene.water_depth:g} m (the model is fully submerged), "

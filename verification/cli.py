@@ -45,7 +45,7 @@ def solve_scene(scene, method: str, **options):
     opts = {k: v for k, v in options.items() if k in ("element_length",)}
     if scene.ends.kind != "fixed":
         from .equivalence import fixed_ends_via_bvp
-        fixed, note = fixed_ends_via_bvp(scene, element_length=opts.get("element_length"))
+        fixed, note = fixed_ends_via_bvp(scene)
         res = vfife.solve(fixed, **opts)
         res.info["ends_conversion"] = note
         res.scene = scene.name

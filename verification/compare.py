@@ -235,7 +235,7 @@ def compare(scene: Scene, *, element_length: float | None = None, sensitivity: b
     if scene.ends.kind == "fixed":
         vf_scene, s_shift = scene, 0.0
     else:
-        vf_scene = fixed_ends_from_bvp(scene, b, seabed_length, element_length)
+        vf_scene = fixed_ends_from_bvp(scene, b, seabed_length)
         s_shift = seabed_length
         notes.append(
             f"The scene's `{scene.ends.kind}` ends were converted for VFIFE: hang-off fixed at the "

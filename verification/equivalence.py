@@ -16,15 +16,14 @@ from riser.transform import fixed_ends_scene
 DEFAULT_SEABED_LENGTH = 300.0
 
 
-def fixed_ends_from_bvp(scene: Scene, bvp_result, seabed_length: float = DEFAULT_SEABED_LENGTH,
-                        element_length: float | None = None) -> Scene:
+def fixed_ends_from_bvp(scene: Scene, bvp_result,
+                        seabed_length: float = DEFAULT_SEABED_LENGTH) -> Scene:
     """The fixed-ends equivalent of a converged BVP result of ``scene``: hang-off at the
     BVP top point, ``seabed_length`` [m] of line added to segments[0] on a near-rigid
     seabed ahead of the BVP touchdown (anchor at x = -seabed_length, y = 0)."""
     sm = bvp_result.summary()
     return fixed_ends_scene(scene, (sm["hang_off_x"], sm["hang_off_height"]), seabed_length,
-                            first_segment_length=sm["first_segment_suspended_length"],
-                            element_length=element_length)
+                            first_segment_length=sm["first_segment_suspended_length"])
 
 
 def fixed_ends_note(scene: Scene, fixed: Scene, seabed_length: float) -> str:
@@ -36,13 +35,12 @@ def fixed_ends_note(scene: Scene, fixed: Scene, seabed_length: float) -> str:
             f"touchdown (that much line added to segments[0])")
 
 
-def fixed_ends_via_bvp(scene: Scene, seabed_length: float = DEFAULT_SEABED_LENGTH,
-                       element_length: float | None = None):
+def fixed_ends_via_bvp(scene: Scene, seabed_length: float = DEFAULT_SEABED_LENGTH):
     """Solve ``scene`` with the BVP and return (fixed-ends scene, note for the summary)."""
     import bvp
     res = bvp.solve(scene)
     if not res.converged:
         raise RuntimeError(f"cannot build the fixed-ends scene: the BVP did not converge "
                            f"({res.message})")
-    fixed = fixed_ends_from_bvp(scene, res, seabed_length, element_length)
+    fixed = fixed_ends_from_bvp(scene, res, seabed_length)
     return fixed, fixed_ends_note(scene, fixed, seabed_length)

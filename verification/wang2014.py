@@ -100,7 +100,7 @@ def vfife_quantities(scene: Scene, bvp_result, element_length: float | None = No
     from .equivalence import DEFAULT_SEABED_LENGTH as extra, fixed_ends_from_bvp
     sm = bvp_result.summary()
     first = sm["first_segment_suspended_length"]
-    fixed = fixed_ends_from_bvp(scene, bvp_result, extra, element_length)
+    fixed = fixed_ends_from_bvp(scene, bvp_result, extra)
     res = vfife.solve(fixed, **({"element_length": element_length} if element_length else {}))
     if not res.converged:
         raise RuntimeError(f"vfife on {scene.name}: {res.message}")

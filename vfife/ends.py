@@ -1,15 +1,27 @@
-"""Boundary conditions the VFIFE solver accepts, and turning a touchdown-form scene into one."""
+"""Boundary conditions and continuum models the VFIFE solver accepts."""
 
 from __future__ import annotations
 
 from riser.errors import UnsupportedSceneError
 from riser.scene import Scene
 
+
 def require_fixed_ends(scene: Scene) -> None:
-    """Raise :class:`UnsupportedSceneError` unless the scene has fixed ends."""
+    """Raise :class:`UnsupportedSceneError` unless the scene has fixed ends and asks for the
+    model the VFIFE elements are: extensible (strain T/EA) on an elastic (penalty) seabed.
+    The inextensible line and the rigid seabed are BVP limits only."""
     if scene.ends.kind != "fixed":
         raise UnsupportedSceneError(
             f"{scene.source}: ends: vfife needs fixed ends (anchor + hang_off) but the scene "
             f"gives the '{scene.ends.kind}' form; solve it with the bvp method first and "
             f"convert it with riser.transform.fixed_ends_scene(scene, hang_off_xy, seabed_length) "
             f"(the CLI does this for you)")
+    if scene.model.get("axial") == "inextensible":
+        raise UnsupportedSceneError(
+            f"{scene.source}: model.axial: 'inextensible' is a limit only the bvp method "
+            "solves; the vfife elements stretch (use 'extensible' or --method bvp)")
+    if scene.model.get("seabed") == "rigid":
+        raise UnsupportedSceneError(
+            f"{scene.source}: model.seabed: 'rigid' is a limit only the bvp method solves; "
+            "the vfife seabed is an elastic penalty of [seabed] stiffness (use 'elastic' or "
+            "--method bvp)")

@@ -1,0 +1,167 @@
+"""Starting guesses of the beam solver: inextensible catenaries (EI = 0) for each end form,
+and a straight stretched chord for taut lines.
+
+Every guess returns the catenary's horizontal tension H [N], the vertical force V0 [N] at
+its start and the suspended segment lengths Ls [m]; :func:`state_guess` samples the
+scaled state of the stacked problem from it. The guesses only need to be close enough for
+Newton's method: the extensible equations start from the inextensible catenary, and an
+elastic seabed from the line lying on y = -w/k.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.optimize import brentq, least_squares
+
+from .catenary import catenary_state
+from .equations import NSTATE
+
+
+class BVPFailure(RuntimeError):
+    """Raised internally when no starting guess or no solution can be found."""
+
+
+def state_guess(tau, w, Ls, EI, H, V0, ox, oy, scale, grounded: float = 0.0,
+                sink: float = 0.0) -> np.ndarray:
+    """Scaled state (6n, m) at the unit coordinates ``tau`` of each stacked segment: the
+    catenary through (ox, oy) with forces (H, V0) there. With ``grounded`` > 0 [m] the
+    first segment (length Ls[0] + grounded) starts with that much line lying straight at
+    y = oy - sink [m] from x = ox - grounded, tension H, before the catenary."""
+    n = len(Ls)
+    Lfull = np.asarray(Ls, float).copy()
+    Lfull[0] += grounded
+    edges = np.concatenate([[0.0], np.cumsum(Lfull)])
+    Y = np.empty((n * NSTATE, tau.size))
+    for k in range(n):
+        s = edges[k] + Lfull[k] * tau - grounded
+        on = s < 0.0
+        st = catenary_state(np.maximum(s, 0.0), w, Ls, H, V0, ox, oy)
+        kap = st["curvature"]
+        M = EI[k] * kap
+        # d(kappa)/ds for kappa = w H / (H^2 + V^2), dV/ds = w
+        F = EI[k] * (-2.0 * w[k] ** 2 * H * st["V"] / (H * H + st["V"] ** 2) ** 2)
+        rows = [np.where(on, ox + s, st["x"]), np.where(on, oy - sink, st["y"]),
+                np.where(on, 0.0, st["theta"]), np.where(on, 0.0, M), np.where(on, 0.0, F),
+                np.where(on, H, st["tension"])]
+        for i, r in enumerate(rows):
+            Y[k * NSTATE + i] = r / scale[i]
+    return Y
+
+
+def taut_guess(tau, L, EA, dx, dy, ox, oy, scale) -> np.ndarray:
+    """Scaled state of a straight line from (ox, oy) to (ox + dx, oy + dy) stretched to the
+    chord: uniform strain, tension EA_eff (chord / L - 1) with the series stiffness
+    EA_eff = L / sum(L_k / EA_k) (no bending)."""
+    n = len(L)
+    chord = math.hypot(dx, dy)
+    total = float(np.sum(L))
+    EAe = total / float(np.sum(np.asarray(L) / np.asarray(EA)))
+    T = max(EAe * (chord / total - 1.0), 0.0)
+    th = math.atan2(dy, dx)
+    edges = np.concatenate([[0.0], np.cumsum(L)])
+    Y = np.zeros((n * NSTATE, tau.size))
+    for k in range(n):
+        s = edges[k] + L[k] * tau
+        f = s / total
+        Y[k * NSTATE + 0] = (ox + f * dx) / scale[0]
+        Y[k * NSTATE + 1] = (oy + f * dy) / scale[1]
+        Y[k * NSTATE + 2] = th / scale[2]
+        Y[k * NSTATE + 5] = T / scale[5]
+    return Y
+
+
+def hang_off_angle(w, L, height, alpha):
+    """Suspended first length and H so that the catenary from the TDP reaches the given
+    height with the given angle."""
+    rest = float(np.sum(w[1:] * L[1:]))
+
+    def forces(l1):
+        Vtop = w[0] * l1 + rest
+        return Vtop / math.tan(alpha), Vtop
+
+    def resid(l1):
+        H, Vtop = forces(l1)
+        if H <= 0:
+            return -height
+        Ls = L.copy()
+        Ls[0] = l1
+        return float(catenary_state(np.array([Ls.sum()]), w, Ls, H, 0.0)["y"][0]) - height
+
+    lo, hi = 1e-3 * L[0], 20.0 * max(L[0], height)
+    grid = np.geomspace(lo, hi, 60)
+    vals = [resid(g) for g in grid]
+    for a, b, fa, fb in zip(grid[:-1], grid[1:], vals[:-1], vals[1:]):
+        if fa * fb <= 0:
+            l1 = brentq(resid, a, b, xtol=1e-9 * L[0])
+            H, _ = forces(l1)
+            Ls = L.copy()
+            Ls[0] = l1
+            return H, 0.0, Ls
+    raise BVPFailure("no catenary with a touchdown reaches the given hang_off_height with "
+                     "hang_off_angle_deg; check the angle, the height and the weights")
+
+
+def grounded(w, L, dx, dy):
+    """Catenary from a touchdown on the seabed (theta = 0) to a hang-off at (dx, dy) from the
+    anchor, with the grounded length L[0] - l1 straight on the seabed."""
+    def top(H, l1):
+        Ls = L.copy()
+        Ls[0] = l1
+        st = catenary_state(np.array([Ls.sum()]), w, Ls, H, 0.0)
+        return float(st["x"][0]) + (L[0] - l1), float(st["y"][0])
+
+    def H_for(l1):
+        f = lambda lh: top(math.exp(lh), l1)[1] - dy                # noqa: E731
+        lo, hi = math.log(1e-6 * np.sum(np.abs(w) * L) + 1e-3), math.log(1e3 * np.sum(np.abs(w) * L) + 1e3)
+        if f(lo) * f(hi) > 0:
+            return None
+        return math.exp(brentq(f, lo, hi, xtol=1e-12))
+
+    def g(l1):
+        H = H_for(l1)
+        if H is None:
+            return None
+        return top(H, l1)[0] - dx
+
+    grid = np.linspace(L[0], 1e-3 * L[0], 80)
+    prev = None
+    for l1 in grid:
+        v = g(l1)
+        if v is None:
+            continue
+        if prev is not None and prev[1] * v <= 0:
+            f = lambda z: g(z) if g(z) is not None else 0.0         # noqa: E731
+            l1s = brentq(f, l1, prev[0], xtol=1e-9 * L[0])
+            Ls = L.copy()
+            Ls[0] = l1s
+            return H_for(l1s), 0.0, Ls
+        prev = (l1, v)
+    raise BVPFailure("no touchdown found within the first segment for the given anchor and "
+                     "hang_off (the line is too short, too long or the first segment does not "
+                     "reach the seabed): lengthen segments[0] or move the ends")
+
+
+def free_hanging(w, L, dx, dy):
+    """Catenary between two pinned ends: unknown H and the vertical force V0 at the anchor."""
+    W = float(np.sum(np.abs(w) * L)) or 1.0
+    total = float(np.sum(w * L))
+    if float(np.sum(L)) <= math.hypot(dx, dy):
+        raise BVPFailure("the line is not longer than the distance between its ends: no "
+                         "catenary joins them (taut)")
+
+    def resid(z):
+        H = math.exp(z[0]) * W
+        st = catenary_state(np.array([L.sum()]), w, L, H, z[1] * W)
+        return [(st["x"][0] - dx) / L.sum(), (st["y"][0] - dy) / L.sum()]
+
+    best = None
+    for h0 in (0.05, 0.3, 1.0, 3.0):
+        r = least_squares(resid, [math.log(h0), -0.5 * total / W], xtol=1e-14, ftol=1e-14)
+        if best is None or r.cost < best.cost:
+            best = r
+    if best.cost > 1e-16:
+        raise BVPFailure("no free-hanging catenary joins the anchor and the hang-off "
+                         "(line too short for the span?)")
+    return math.exp(best.x[0]) * W, best.x[1] * W, L.copy()
