@@ -39,6 +39,13 @@ with the Morison drag of a current of signed speed V(y) along +x (eqs 3, 4)
 Drag is written as s|s| with its analytic Jacobian, which is smooth enough at sign
 changes; the foundation's kink at y = 0 has the one-sided Jacobian of its active branch.
 
+Contact zone (``split_first``): the solver may split the first segment at the lift-off
+point s_L, an unknown parameter with y(s_L) = 0. Stacked segment 0 is then the contact
+zone [0, s_L], where the foundation acts as the linear spring p = -k y (the active branch
+of the same law: y <= 0 there is checked after solving), and stacked segment 1 the rest of
+the first segment. Both pieces are smooth, so the collocation needs no refinement at the
+kink; the unilateral law stays on every other segment.
+
 Segments are stacked: segment k runs over tau in [0, 1] with s = s_k + L_k tau, and the
 solver works with the scaled state Y = u / scale so that every unknown is O(1).
 """
@@ -75,6 +82,7 @@ class BeamModel:
     speed: object = None
     speed_gradient: object = None
     free_first_length: bool = False
+    split_first: bool = False
     length_scale: float = 1.0
     drag_factor: float = 1.0
 
@@ -82,6 +90,11 @@ class BeamModel:
         if self.EA is None:
             self.EA = np.full_like(np.asarray(self.EI, float), np.inf)
         self.inv_EA = 1.0 / np.asarray(self.EA, float)       # 0 where inextensible
+        # per stacked segment: 1 where the foundation is the linear spring of the contact
+        # zone (split_first), 0 where it is unilateral
+        self.linear_zone = np.zeros(len(self.EI))
+        if self.split_first:
+            self.linear_zone[0] = 1.0
 
     @property
     def n_seg(self) -> int:
@@ -95,6 +108,8 @@ class BeamModel:
         L = self.lengths.astype(float).copy()
         if self.free_first_length:
             L[0] = p[0] * self.length_scale
+            if self.split_first:          # the rest of the first segment
+                L[1] = self.lengths[0] + self.lengths[1] - L[0]
         return L
 
     # ------------------------------------------------------------------ SI right-hand side
@@ -108,9 +123,16 @@ class BeamModel:
             return z, z
         return self.drag_factor * self.speed(y), self.drag_factor * self.speed_gradient(y)
 
-    def seabed_reaction(self, y: np.ndarray) -> np.ndarray:
-        """Upward seabed reaction per unstretched length p = k max(-y, 0) [N/m]."""
-        return self.k_seabed * np.maximum(-y, 0.0)
+    def seabed_reaction(self, y: np.ndarray, linear=0.0) -> np.ndarray:
+        """Upward seabed reaction per unstretched length p = k max(-y, 0) [N/m]; where
+        ``linear`` is 1 (contact zone) its active branch -k y."""
+        return self.k_seabed * np.where(linear > 0.0, -y, np.maximum(-y, 0.0))
+
+    def _reaction_and_slope(self, y: np.ndarray):
+        lin = self.linear_zone[:, None]
+        p = self.seabed_reaction(y, lin)
+        dp = np.where((lin > 0.0) | (y < 0.0), -self.k_seabed, 0.0)      # dp/dy
+        return p, dp
 
     def si_rhs(self, u: np.ndarray) -> np.ndarray:
         """du/ds [SI per m of unstretched length] for the SI state u of shape (n, 6, m)."""
@@ -134,7 +156,7 @@ class BeamModel:
             d[:, IF] += self.c_n[:, None] * np.abs(Vn) * Vn
             d[:, IT] -= self.c_t[:, None] * np.abs(Vt) * Vt
         if self.k_seabed > 0.0:
-            p = self.seabed_reaction(y)
+            p, _ = self._reaction_and_slope(y)
             d[:, IF] += p * c
             d[:, IT] -= p * s
         return d
@@ -183,8 +205,7 @@ class BeamModel:
             J[:, IT, ITH] -= 2.0 * ct * np.abs(Vt) * (-V * s)
             J[:, IT, IY] -= 2.0 * ct * np.abs(Vt) * (dV * c)
         if self.k_seabed > 0.0:
-            pr = self.seabed_reaction(y)
-            dp = np.where(y < 0.0, -self.k_seabed, 0.0)      # dp/dy
+            pr, dp = self._reaction_and_slope(y)
             J[:, IF, IY] += dp * c
             J[:, IF, ITH] -= pr * s
             J[:, IT, IY] -= dp * s
@@ -200,6 +221,8 @@ class BeamModel:
         if not self.free_first_length:
             return full, None
         dp = np.zeros((n * NSTATE, 1, m))
-        f0 = self.rhs(tau, Y, p)[:NSTATE]          # = L0 / sc * f
-        dp[:NSTATE, 0] = f0 / L[0] * self.length_scale
+        f = self.rhs(tau, Y, p)                   # segment k rows = L_k / sc * f
+        dp[:NSTATE, 0] = f[:NSTATE] / L[0] * self.length_scale
+        if self.split_first:                      # L_1 = first length - L_0
+            dp[NSTATE:2 * NSTATE, 0] = -f[NSTATE:2 * NSTATE] / L[1] * self.length_scale
         return full, dp

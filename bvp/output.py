@@ -60,8 +60,13 @@ def build_profile(prob, sol, water_depth: float | None) -> tuple[Profile, dict]:
         checks["grounded_length"] = float(grounded)
     if prob.form == "fixed_elastic":
         tdp_s = lift_off(prob, sol, Ls, c)
-        if tdp_s is not None:
-            checks["grounded_length"] = float(tdp_s)
+    if prob.form == "fixed_liftoff":
+        tdp_s = float(Ls[0])
+        checks["first_segment_suspended_length"] = float(Ls[1])
+        zone = c["s"] <= tdp_s
+        checks["contact_zone_max_height"] = float(np.max(c["y"][zone]))
+    if tdp_s is not None and prob.form in ("fixed_elastic", "fixed_liftoff"):
+        checks["grounded_length"] = float(tdp_s)
     prof = Profile(s=c["s"], x=c["x"], y=c["y"], z=np.zeros_like(c["s"]), theta=c["theta"],
                    tension=c["T"], moment=np.abs(c["M"]), shear=np.abs(c["F"]),
                    curvature=np.abs(c["kappa"]), tdp_s=tdp_s)
@@ -69,7 +74,7 @@ def build_profile(prob, sol, water_depth: float | None) -> tuple[Profile, dict]:
         raise BVPFailure("solution contains NaN or inf")
     # independent self-checks of the converged solution
     checks["equilibrium_residual"] = equilibrium_residual(model, Ls, grounded, c)
-    if tdp_s is not None and prob.form != "fixed_elastic":
+    if tdp_s is not None and prob.form not in ("fixed_elastic", "fixed_liftoff"):
         susp = c["s"] > tdp_s + 1e-9
         ymin = float(np.min(c["y"][susp])) if np.any(susp) else 0.0
         checks["min_suspended_height"] = ymin
@@ -154,7 +159,8 @@ def equilibrium_residual(model: BeamModel, Ls: np.ndarray, grounded: float, c: d
         s, y, th = c["s"][sel], c["y"][sel], c["theta"][sel]
         t = np.stack([np.cos(th), np.sin(th)])
         nrm = np.stack([-np.sin(th), np.cos(th)])
-        load = np.stack([np.zeros_like(s), -model.w[k] + model.seabed_reaction(y)])
+        load = np.stack([np.zeros_like(s), -model.w[k]
+                         + model.seabed_reaction(y, model.linear_zone[k])])
         if model.speed is not None:
             V = model.drag_factor * model.speed(y)
             Vn = -V * np.sin(th)

@@ -120,17 +120,26 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
         return SolveResult("bvp", scene.name, False, msg, None, time.perf_counter() - t0,
                            effects, info)
 
-    try:
-        prob = _build_problem(scene)
-    except BVPFailure as exc:
-        return fail(str(exc))
-
     tau0 = clustered_mesh(settings["initial_nodes"])
-    sol, how = _solve_with_continuation(prob, tau0, settings, continuation)
-    info["strategy"] = how
+    split_tried = ""
+    for split in (True, False):
+        try:
+            prob = _build_problem(scene, split)
+        except BVPFailure as exc:
+            return fail(str(exc))
+        sol, how = _solve_with_continuation(prob, tau0, settings, continuation)
+        if prob.form == "fixed_liftoff":
+            # the contact zone must be in contact (y <= 0 up to 1 % of the sink depth w/k),
+            # else solve the unilateral law everywhere
+            why = _contact_zone_violation(prob, sol)
+            if why:
+                split_tried = f"contact zone + lift-off point: {why}; then "
+                continue
+        break
+    info["strategy"] = split_tried + how
     if sol is None or not _good(sol, prob):
         msg = sol.message if sol is not None else "no solution"
-        return fail(f"solve_bvp did not converge ({msg}); tried: {how}")
+        return fail(f"solve_bvp did not converge ({msg}); tried: {split_tried}{how}")
 
     info["nodes"] = int(sol.x.size)
     info["iterations"] = int(sol.niter)
@@ -144,8 +153,23 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
                        time.perf_counter() - t0, effects, info)
 
 
+def _contact_zone_violation(prob: _Problem, sol) -> str:
+    """Why the contact-zone solution is not valid ('' when it is)."""
+    if sol is None or not _good(sol, prob):
+        return "no convergence"
+    m = prob.model
+    zone_y = sol.y[IY] * m.scale[IY]
+    sink = max(float(m.w[0]), 0.0) / m.k_seabed
+    if float(np.max(zone_y)) > 0.01 * sink + 1e-9:
+        return f"the zone rises {float(np.max(zone_y)):.3g} m above the seabed"
+    return ""
+
+
 # ---------------------------------------------------------------------------- set-up
-def _build_problem(scene: Scene) -> _Problem:
+def _build_problem(scene: Scene, split: bool = True) -> _Problem:
+    """The stacked problem of ``scene``. ``split``: on an elastic seabed with the anchor on
+    it, solve the contact zone (linear spring) and the rest of the line as two pieces
+    joined at an unknown lift-off point with y = 0 (see bvp/equations.py)."""
     props = segment_properties(scene)
     n = len(props)
     EI = np.array([p.EI for p in props])
@@ -190,7 +214,9 @@ def _build_problem(scene: Scene) -> _Problem:
             except BVPFailure:
                 pass
         if k_seabed > 0.0:
-            form = "fixed_elastic"
+            # a contact zone of at least a metre ahead of the anchor, else unilateral throughout
+            form = ("fixed_liftoff" if found and split and L[0] - Ls[0] > 1.0
+                    else "fixed_elastic")
         elif found:
             form, free_first = "fixed_seabed", True
         else:
@@ -206,7 +232,8 @@ def _build_problem(scene: Scene) -> _Problem:
                 taut = True
                 H, V0, Ls = 1.0, 0.0, L.copy()
 
-    grounded = float(L[0] - Ls[0]) if form in ("fixed_seabed", "fixed_elastic") else 0.0
+    grounded = (float(L[0] - Ls[0]) if form in ("fixed_seabed", "fixed_elastic", "fixed_liftoff")
+                else 0.0)
     ox = anchor[0] + grounded
     oy = anchor[1]
     cat_top_T = float(catenary_state(np.array([Ls.sum()]), w, Ls, H, V0)["tension"][0])
@@ -218,12 +245,32 @@ def _build_problem(scene: Scene) -> _Problem:
     scale = np.array([length_scale, length_scale, 1.0, EImax * wref / Ts,
                       wref * math.sqrt(EImax / Ts), Ts])
 
+    sink = max(float(w[0]), 0.0) / k_seabed if k_seabed > 0.0 else 0.0
+    if form == "fixed_liftoff":
+        # stacked segment 0: the contact zone [0, s_L]; 1: the rest of the first segment
+        def dup(a):
+            return np.concatenate([a[:1], a])
+        Lz = np.concatenate([[grounded], Ls])
+        model = BeamModel(EI=dup(EI), EA=dup(EA), w=dup(w), c_n=dup(c_n), c_t=dup(c_t),
+                          lengths=np.concatenate([[grounded], [L[0] - grounded], L[1:]]),
+                          scale=scale, k_seabed=k_seabed, speed=speed, speed_gradient=grad,
+                          free_first_length=True, split_first=True, length_scale=length_scale)
+        p0 = np.array([grounded / length_scale])
+        Lz[0] = 0.0
+
+        def guess(tau: np.ndarray) -> np.ndarray:
+            return guesses.state_guess(tau, dup(w), Lz, dup(EI), H, V0, ox, oy, scale,
+                                       grounded, sink)
+
+        return _Problem(model=model, bc=_boundary_conditions(form, scene, model, L),
+                        guess_p=p0, form=form, seabed_start=anchor[0], anchor_xy=anchor,
+                        first_total=float(L[0]), guess=guess)
+
     model = BeamModel(EI=EI, EA=EA, w=w, c_n=c_n, c_t=c_t, lengths=L.copy() if free_first or
                       form == "fixed_elastic" else Ls, scale=scale, k_seabed=k_seabed,
                       speed=speed, speed_gradient=grad, free_first_length=free_first,
                       length_scale=length_scale)
     p0 = np.array([Ls[0] / length_scale]) if free_first else np.zeros(0)
-    sink = max(float(w[0]), 0.0) / k_seabed if k_seabed > 0.0 else 0.0
 
     if taut:
         def guess(tau: np.ndarray) -> np.ndarray:
@@ -278,6 +325,14 @@ def _boundary_conditions(form: str, scene: Scene, model: BeamModel, L: np.ndarra
             return np.array([ya[IX] - (xa + reach) / sc[IX], ya[IY], ya[ITH], ya[IM],
                              *continuity(ya, yb), yb[top + IM], yb[top + IX] - xh,
                              yb[top + IY] - yh])
+    elif form == "fixed_liftoff":
+        xa = ends.anchor[0] / sc[IX]
+        xh, yh = ends.hang_off[0] / sc[IX], ends.hang_off[1] / sc[IY]
+
+        def bc(ya, yb, p):
+            # anchor pinned on y = 0; y = 0 at the lift-off point (end of the contact zone)
+            return np.array([ya[IX] - xa, ya[IY], ya[IM], *continuity(ya, yb),
+                             yb[top + IM], yb[top + IX] - xh, yb[top + IY] - yh, yb[IY]])
     else:
         xa, ya0 = ends.anchor[0] / sc[IX], ends.anchor[1] / sc[IY]
         xh, yh = ends.hang_off[0] / sc[IX], ends.hang_off[1] / sc[IY]
@@ -372,8 +427,8 @@ def _solve_with_continuation(prob: _Problem, tau0: np.ndarray, settings: dict,
 def _good(sol, prob: _Problem) -> bool:
     if not sol.success or not np.all(np.isfinite(sol.y)):
         return False
-    if prob.form in ("hang_off_angle", "fixed_seabed"):
+    if prob.form in ("hang_off_angle", "fixed_seabed", "fixed_liftoff"):
         l1 = sol.p[0] * prob.model.length_scale
-        if l1 <= 0.0 or (prob.form == "fixed_seabed" and l1 > prob.first_total * (1 + 1e-9)):
+        if l1 <= 0.0 or (prob.form != "hang_off_angle" and l1 > prob.first_total * (1 + 1e-9)):
             return False
     return True

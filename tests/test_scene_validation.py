@@ -171,8 +171,12 @@ CASES = [
     ("missing-wall-or-inner", W, "wall_thickness = 0.0191\n", "",
      "line_types.steel.wall_thickness", ["required"]),
     ("missing-density-or-mass", W, "density = 7860.0\n", "", "line_types.steel.density", ["required"]),
+    # the Wang base is inextensible (its end form's default): only EI is needed
     ("missing-youngs-or-stiffnesses", W, "youngs_modulus = 2.06e11\n", "",
-     "line_types.steel.axial_stiffness", ["required when youngs_modulus is not given"]),
+     "line_types.steel.bending_stiffness", ["required when youngs_modulus is not given"]),
+    ("missing-axial-stiffness-extensible", F, "axial_stiffness = 2.0e9\n", "",
+     "line_types.steel.axial_stiffness", ["required for the extensible model",
+                                          "default for fixed ends", "inextensible"]),
     ("missing-bending-stiffness", F, "bending_stiffness = 1.0e7\n", "",
      "line_types.steel.bending_stiffness", ["required when youngs_modulus is not given"]),
     ("missing-current-heights", F, "heights = [0.0, 500.0]\n", "",
@@ -284,9 +288,18 @@ CASES = [
      "ends.hang_off", ["more than one [ends] form", "hang_off_height"]),
     ("angle-over-90", W, "tdp_tension = 160000.0", "hang_off_height = 1500.0\nhang_off_angle_deg = 95.0",
      "ends.hang_off_angle_deg", ["must be <= 90 deg"]),
+    # [model]: the continuum model (README "One model, two methods")
+    ("model-axial-unknown", F, "[bvp]", "[model]\naxial = \"stretchy\"\n[bvp]", "model.axial",
+     ["must be one of 'extensible', 'inextensible'"]),
+    ("model-elastic-seabed-wang-form", W, "tdp_tension = 160000.0",
+     "tdp_tension = 160000.0\n[model]\nseabed = \"elastic\"", "model.seabed",
+     ["needs fixed ends", "rigid"]),
     # geometry of fixed ends
-    ("line-shorter-than-chord", F, "hang_off = [600.0, 500.0]", "hang_off = [900.0, 500.0]",
-     "segments", ["line length 1000 m is shorter than the distance 1029.56 m"]),
+    # an extensible line may be taut (it stretches); an inextensible one cannot reach
+    ("line-shorter-than-chord", F, "hang_off = [600.0, 500.0]",
+     "hang_off = [900.0, 500.0]\n[model]\naxial = \"inextensible\"",
+     "segments", ["line length 1000 m is not longer than the distance 1029.56 m",
+                  "inextensible"]),
     ("line-shorter-than-height", W, "tdp_tension = 160000.0",
      "hang_off_height = 3000.0\nhang_off_angle_deg = 80.0", "segments", ["cannot reach", "3000"]),
     ("hang-off-below-seabed", F, "hang_off = [600.0, 500.0]", "hang_off = [600.0, -10.0]",
@@ -459,8 +472,9 @@ REQUIRED = {
 }
 # Where the blamed key is another one than the mutated leaf, by design.
 BLAMED = {
-    # the youngs_modulus alternative is reported by the first stiffness it needs
-    ("wang", "line_types.steel.youngs_modulus", "removed"): "line_types.steel.axial_stiffness",
+    # the youngs_modulus alternative is reported by the stiffness the (inextensible) Wang
+    # model needs
+    ("wang", "line_types.steel.youngs_modulus", "removed"): "line_types.steel.bending_stiffness",
     # a missing [ends] key leaves no form at all
     ("wang", "ends.tdp_tension", "removed"): "ends",
     # without inner_diameter / mass_per_length the other form of the pair is required

@@ -13,7 +13,7 @@ import pytest
 from scipy.optimize import fsolve
 
 import vfife
-from riser.transform import fixed_ends_scene, rigid_seabed_stiffness
+from riser.transform import DEFAULT_SEABED_STIFFNESS, fixed_ends_scene
 from riser.errors import UnsupportedSceneError
 from riser.profile import summarize
 from riser.scene import load_scene, scene_from_dict
@@ -63,7 +63,10 @@ def test_fixed_ends_scene_conversion():
     sc = wang_fixed()
     assert sc.ends.kind == "fixed" and sc.ends.anchor == (-300.0, 0.0)
     assert sc.segments[0].length == pytest.approx(690.0)
-    assert sc.seabed is not None and sc.seabed.stiffness == rigid_seabed_stiffness(sc.line_types['steel'].bending_stiffness, 1.0)
+    # a soil property, not a mesh one: the same stiffness whatever the element length
+    assert sc.seabed is not None and sc.seabed.stiffness == DEFAULT_SEABED_STIFFNESS
+    # the copy is the model both methods solve: extensible on the elastic seabed
+    assert sc.axial_model == "extensible" and sc.seabed_model == "elastic"
 
 
 # ------------------------------------------------------------------ closed forms

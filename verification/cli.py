@@ -36,19 +36,30 @@ def cmd_scenes(args) -> int:
 
 
 def solve_scene(scene, method: str, **options):
-    """Solve ``scene`` with ``method``; a VFIFE run of a scene without fixed ends takes the
-    hang-off point from the BVP solution (stated in the result's info)."""
+    """Solve ``scene`` with ``method``. A VFIFE run of a scene in a Wang form (touchdown
+    tension, or hang-off height and angle) solves its fixed-ends equivalent: the hang-off at
+    the BVP's top point and line added on an elastic seabed ahead of the touchdown (stated
+    in the result's info); its arc lengths are reported in the scene's own coordinate,
+    from the BVP touchdown (the added line has s < 0)."""
     if method == "bvp":
         import bvp
         return bvp.solve(scene, **{k: v for k, v in options.items() if k in ("tolerance",)})
+    import dataclasses
+
     import vfife
     opts = {k: v for k, v in options.items() if k in ("element_length",)}
     if scene.ends.kind != "fixed":
-        from .equivalence import fixed_ends_via_bvp
+        from .equivalence import DEFAULT_SEABED_LENGTH, fixed_ends_via_bvp
         fixed, note = fixed_ends_via_bvp(scene)
         res = vfife.solve(fixed, **opts)
-        res.info["ends_conversion"] = note
+        res.info["ends_conversion"] = (f"{note}; arc lengths s are measured from the BVP "
+                                       f"touchdown (the added line has s < 0)")
         res.scene = scene.name
+        if res.profile is not None:
+            p = res.profile
+            res.profile = dataclasses.replace(
+                p, s=p.s - DEFAULT_SEABED_LENGTH,
+                tdp_s=None if p.tdp_s is None else p.tdp_s - DEFAULT_SEABED_LENGTH)
         return res
     return vfife.solve(scene, **opts)
 
