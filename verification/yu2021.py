@@ -10,7 +10,7 @@ other way).
 Unstated inputs (REFERENCE.md section 2): the hang-off's horizontal offset X_h is
 calibrated once, with the BVP, so that A3 without current has the published hang-off angle
 4.372 deg from vertical, and kept for every case; the internal contents are taken as empty;
-the seabed stiffness (VFIFE) is 1e5 N/m2.
+the seabed stiffness is 1e5 N/m2 (a soft clay), the same elastic seabed for both methods.
 
 Definitions used for the paper's quantities:
 
@@ -278,7 +278,7 @@ def _report(df: pd.DataFrame, out: Path, xh: float, stored: float, timing: dict,
         f"- Hang-off horizontal offset from the anchor X_h = **{xh:.3f} m**, calibrated once with "
         f"the BVP so that A3 without current hangs off at {TARGET_ANGLE_FROM_VERTICAL} deg from "
         f"vertical, and kept for every case (the built-in scenes store {stored:.2f} m).",
-        "- No internal contents; seabed stiffness 1e5 N/m2 for VFIFE (the BVP seabed is rigid).",
+        "- No internal contents; seabed stiffness 1e5 N/m2 (a soft clay; not given), the same elastic seabed and extensible line for both methods.",
         "- Sheared current: linear from 0 at the seabed to the top speed at the surface, flowing "
         "towards the anchor side (the paper's +x is our -x).",
         "- Gap study: the lowest section and the total length are kept, the hanging section takes "
