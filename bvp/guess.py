@@ -1,11 +1,12 @@
-"""Starting guesses of the beam solver: inextensible catenaries (EI = 0) for each end form,
-and a straight stretched chord for taut lines.
+"""Starting guesses of the beam solver: catenaries (EI = 0) for each end form.
 
 Every guess returns the catenary's horizontal tension H [N], the vertical force V0 [N] at
 its start and the suspended segment lengths Ls [m]; :func:`state_guess` samples the
 scaled state of the stacked problem from it. The guesses only need to be close enough for
-Newton's method: the extensible equations start from the inextensible catenary, and an
-elastic seabed from the line lying on y = -w/k.
+Newton's method. Between two pinned ends the catenary is elastic when the model is
+(Irvine's, exact for EI = 0), so that a taut line, or one as long as its chord, has a
+starting tension that carries its weight; the touchdown forms start from the inextensible
+catenary, and an elastic seabed from the line lying on y = -w/k.
 """
 
 from __future__ import annotations
@@ -24,11 +25,12 @@ class BVPFailure(RuntimeError):
 
 
 def state_guess(tau, w, Ls, EI, H, V0, ox, oy, scale, grounded: float = 0.0,
-                sink: float = 0.0) -> np.ndarray:
+                sink: float = 0.0, EA=None) -> np.ndarray:
     """Scaled state (6n, m) at the unit coordinates ``tau`` of each stacked segment: the
     catenary through (ox, oy) with forces (H, V0) there. With ``grounded`` > 0 [m] the
     first segment (length Ls[0] + grounded) starts with that much line lying straight at
-    y = oy - sink [m] from x = ox - grounded, tension H, before the catenary."""
+    y = oy - sink [m] from x = ox - grounded, tension H, before the catenary. ``EA``
+    (shape (n,), None: inextensible) makes the catenary elastic."""
     n = len(Ls)
     Lfull = np.asarray(Ls, float).copy()
     Lfull[0] += grounded
@@ -37,7 +39,7 @@ def state_guess(tau, w, Ls, EI, H, V0, ox, oy, scale, grounded: float = 0.0,
     for k in range(n):
         s = edges[k] + Lfull[k] * tau - grounded
         on = s < 0.0
-        st = catenary_state(np.maximum(s, 0.0), w, Ls, H, V0, ox, oy)
+        st = catenary_state(np.maximum(s, 0.0), w, Ls, H, V0, ox, oy, EA)
         kap = st["curvature"]
         M = EI[k] * kap
         # d(kappa)/ds for kappa = w H / (H^2 + V^2), dV/ds = w
@@ -47,28 +49,6 @@ def state_guess(tau, w, Ls, EI, H, V0, ox, oy, scale, grounded: float = 0.0,
                 np.where(on, H, st["tension"])]
         for i, r in enumerate(rows):
             Y[k * NSTATE + i] = r / scale[i]
-    return Y
-
-
-def taut_guess(tau, L, EA, dx, dy, ox, oy, scale) -> np.ndarray:
-    """Scaled state of a straight line from (ox, oy) to (ox + dx, oy + dy) stretched to the
-    chord: uniform strain, tension EA_eff (chord / L - 1) with the series stiffness
-    EA_eff = L / sum(L_k / EA_k) (no bending)."""
-    n = len(L)
-    chord = math.hypot(dx, dy)
-    total = float(np.sum(L))
-    EAe = total / float(np.sum(np.asarray(L) / np.asarray(EA)))
-    T = max(EAe * (chord / total - 1.0), 0.0)
-    th = math.atan2(dy, dx)
-    edges = np.concatenate([[0.0], np.cumsum(L)])
-    Y = np.zeros((n * NSTATE, tau.size))
-    for k in range(n):
-        s = edges[k] + L[k] * tau
-        f = s / total
-        Y[k * NSTATE + 0] = (ox + f * dx) / scale[0]
-        Y[k * NSTATE + 1] = (oy + f * dy) / scale[1]
-        Y[k * NSTATE + 2] = th / scale[2]
-        Y[k * NSTATE + 5] = T / scale[5]
     return Y
 
 
@@ -143,21 +123,23 @@ def grounded(w, L, dx, dy):
                      "reach the seabed): lengthen segments[0] or move the ends")
 
 
-def free_hanging(w, L, dx, dy):
-    """Catenary between two pinned ends: unknown H and the vertical force V0 at the anchor."""
+def free_hanging(w, L, dx, dy, EA=None):
+    """Catenary between two pinned ends (elastic with ``EA`` [N] per segment, else
+    inextensible): unknown H and the vertical force V0 at the anchor."""
     W = float(np.sum(np.abs(w) * L)) or 1.0
     total = float(np.sum(w * L))
-    if float(np.sum(L)) <= math.hypot(dx, dy):
+    if EA is None and float(np.sum(L)) <= math.hypot(dx, dy):
         raise BVPFailure("the line is not longer than the distance between its ends: no "
-                         "catenary joins them (taut)")
+                         "inextensible catenary joins them (taut)")
 
     def resid(z):
         H = math.exp(z[0]) * W
-        st = catenary_state(np.array([L.sum()]), w, L, H, z[1] * W)
+        st = catenary_state(np.array([L.sum()]), w, L, H, z[1] * W, EA=EA)
         return [(st["x"][0] - dx) / L.sum(), (st["y"][0] - dy) / L.sum()]
 
     best = None
-    for h0 in (0.05, 0.3, 1.0, 3.0):
+    # a taut or nearly straight line: H of the stretch EA (chord / L - 1) is in range too
+    for h0 in (0.05, 0.3, 1.0, 3.0, 30.0, 1e3, 1e5):
         r = least_squares(resid, [math.log(h0), -0.5 * total / W], xtol=1e-14, ftol=1e-14)
         if best is None or r.cost < best.cost:
             best = r

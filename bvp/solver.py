@@ -128,9 +128,10 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
         except BVPFailure as exc:
             return fail(str(exc))
         sol, how = _solve_with_continuation(prob, tau0, settings, continuation)
-        if prob.form == "fixed_liftoff":
+        if prob.form == "fixed_liftoff" and sol is not None and _good(sol, prob):
             # the contact zone must be in contact (y <= 0 up to 1 % of the sink depth w/k),
-            # else solve the unilateral law everywhere
+            # else solve the unilateral law everywhere (a failure to converge is final: the
+            # unilateral form starts from the same guess and only adds the kink)
             why = _contact_zone_violation(prob, sol)
             if why:
                 split_tried = f"contact zone + lift-off point: {why}; then "
@@ -154,9 +155,7 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
 
 
 def _contact_zone_violation(prob: _Problem, sol) -> str:
-    """Why the contact-zone solution is not valid ('' when it is)."""
-    if sol is None or not _good(sol, prob):
-        return "no convergence"
+    """Why the converged contact-zone solution is not valid ('' when it is)."""
     m = prob.model
     zone_y = sol.y[IY] * m.scale[IY]
     sink = max(float(m.w[0]), 0.0) / m.k_seabed
@@ -194,7 +193,8 @@ def _build_problem(scene: Scene, split: bool = True) -> _Problem:
     form = ends.kind
     anchor = (0.0, 0.0)
     free_first = False
-    taut = False
+    extensible = scene.axial_model == "extensible"
+    cat_EA = None             # the elastic catenary between pinned ends (else inextensible)
     if form == "tdp_tension":
         H, V0, Ls = ends.tdp_tension, 0.0, L.copy()
     elif form == "hang_off_angle":
@@ -224,13 +224,8 @@ def _build_problem(scene: Scene, split: bool = True) -> _Problem:
             # i.e. hang pinned there and rise from the seabed (checked after solving)
             form = "fixed_lifted" if on_seabed else "fixed_free"
         if not found:
-            try:
-                H, V0, Ls = guesses.free_hanging(w, L, dx, dy)
-            except BVPFailure:
-                if scene.axial_model != "extensible":
-                    raise
-                taut = True
-                H, V0, Ls = 1.0, 0.0, L.copy()
+            cat_EA = EA if extensible else None
+            H, V0, Ls = guesses.free_hanging(w, L, dx, dy, cat_EA)
 
     grounded = (float(L[0] - Ls[0]) if form in ("fixed_seabed", "fixed_elastic", "fixed_liftoff")
                 else 0.0)
@@ -238,8 +233,6 @@ def _build_problem(scene: Scene, split: bool = True) -> _Problem:
     oy = anchor[1]
     cat_top_T = float(catenary_state(np.array([Ls.sum()]), w, Ls, H, V0)["tension"][0])
     Ts = max(cat_top_T, H, 1.0)
-    if taut:
-        Ts = max(Ts, float(np.min(EA)) * 1e-3)
     wref = max(float(np.max(np.abs(w))), Ts / length_scale * 1e-3)
     EImax = float(np.max(EI))
     scale = np.array([length_scale, length_scale, 1.0, EImax * wref / Ts,
@@ -272,15 +265,13 @@ def _build_problem(scene: Scene, split: bool = True) -> _Problem:
                       length_scale=length_scale)
     p0 = np.array([Ls[0] / length_scale]) if free_first else np.zeros(0)
 
-    if taut:
+    if form == "fixed_elastic":
         def guess(tau: np.ndarray) -> np.ndarray:
-            return guesses.taut_guess(tau, L, EA, dx, dy, anchor[0], anchor[1], scale)
-    elif form == "fixed_elastic":
-        def guess(tau: np.ndarray) -> np.ndarray:
-            return guesses.state_guess(tau, w, Ls, EI, H, V0, ox, oy, scale, grounded, sink)
+            return guesses.state_guess(tau, w, Ls, EI, H, V0, ox, oy, scale, grounded, sink,
+                                       cat_EA)
     else:
         def guess(tau: np.ndarray) -> np.ndarray:
-            return guesses.state_guess(tau, w, Ls, EI, H, V0, ox, oy, scale)
+            return guesses.state_guess(tau, w, Ls, EI, H, V0, ox, oy, scale, EA=cat_EA)
 
     return _Problem(model=model, bc=_boundary_conditions(form, scene, model, L), guess_p=p0,
                     form=form, seabed_start=anchor[0], anchor_xy=anchor,

@@ -49,7 +49,10 @@ def solve_scene(scene, method: str, **options):
     import vfife
     opts = {k: v for k, v in options.items() if k in ("element_length",)}
     if scene.ends.kind != "fixed":
+        from vfife.ends import require_vfife_model
+
         from .equivalence import DEFAULT_SEABED_LENGTH, fixed_ends_via_bvp
+        require_vfife_model(scene)
         fixed, note = fixed_ends_via_bvp(scene)
         res = vfife.solve(fixed, **opts)
         res.info["ends_conversion"] = (f"{note}; arc lengths s are measured from the BVP "

@@ -16,6 +16,13 @@ def require_fixed_ends(scene: Scene) -> None:
             f"gives the '{scene.ends.kind}' form; solve it with the bvp method first and "
             f"convert it with riser.transform.fixed_ends_scene(scene, hang_off_xy, seabed_length) "
             f"(the CLI does this for you)")
+    require_vfife_model(scene)
+
+
+def require_vfife_model(scene: Scene) -> None:
+    """Raise :class:`UnsupportedSceneError` if the scene's [model] explicitly asks for a
+    BVP-only limit (also for a Wang-form scene, before its fixed-ends conversion, which
+    would otherwise solve the extensible line on an elastic seabed instead)."""
     if scene.model.get("axial") == "inextensible":
         raise UnsupportedSceneError(
             f"{scene.source}: model.axial: 'inextensible' is a limit only the bvp method "

@@ -8,7 +8,7 @@ import time
 
 import numpy as np
 
-from riser.errors import UnsupportedSceneError
+from riser.errors import SceneError, UnsupportedSceneError
 from riser.profile import Profile
 from riser.result import SolveResult
 from riser.scene import Scene
@@ -136,6 +136,8 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
     require_fixed_ends(scene)
     vf = scene.vfife
     h = float(element_length if element_length is not None else vf.get("element_length", 1.0))
+    if not 0.0 < h <= 1000.0:         # the range of the scene key (riser/scene.py)
+        raise SceneError(scene.source, "element_length", f"must be > 0 and <= 1000 m, got {h:g}")
     tol = float(tolerance if tolerance is not None else vf.get("static_tolerance", 1e-3))
     planar = bool(scene.is_planar)
     if vf.get("clamped_ends") and not planar:
