@@ -1,68 +1,141 @@
 """Cross-method regression: VFIFE against the BVP under the comparison protocol.
 
-The reference is the other solver (independent physics, drag, geometry). Tolerances come
-from verification/tolerances.py (the protocol); the only rows not asserted on coarse
-meshes are the touchdown rows, for the stated reason below.
+The reference is the other solver (independent discretisation: collocation against an
+explicit lumped-mass relaxation) of the same continuum model, an extensible line on the
+scene's elastic seabed. Every comparison here runs at the protocol's default element
+length (1 m; a few seconds each) and is asserted against the protocol's tolerances
+(verification/tolerances.py, where each is justified by the measurement of issue 11).
 """
 
 from __future__ import annotations
 
 import dataclasses
 
+import pandas as pd
 import pytest
 
+from riser.transform import DEFAULT_SEABED_STIFFNESS
 from verification.catalog import resolve
-from verification.compare import compare
-
-# Rows that depend on resolving the touchdown boundary layer (width sqrt(EI/T) = 5-8 m):
-# a 5 m VFIFE mesh cannot, so on coarse meshes they are reported, not asserted. The 1 m
-# test below asserts them.
-TOUCHDOWN_ROWS = {"moment", "tdp_x"}
+from verification.compare import AGREEMENT_COLUMNS, compare, report_markdown, write
+from verification.equivalence import DEFAULT_SEABED_LENGTH
 
 
-def failing(comp, skip=()):
-    return [(r["quantity"], r["abs_diff"], r["tolerance"]) for r in comp.rows
-            if not r["pass"] and r["quantity"] not in skip]
+def failing(comp):
+    return [(r["quantity"], r["abs_diff"], r["tolerance"]) for r in comp.rows if not r["pass"]]
+
+
+def by_name(rows):
+    return {r["quantity"]: r for r in rows}
 
 
 @pytest.fixture(scope="module")
-def wang_coarse():
-    return compare(resolve("wang2014-baseline"), element_length=5.0, sensitivity=False)
+def wang():
+    # the Wang baseline (touchdown-tension form) at the default 1 m VFIFE mesh
+    return compare(resolve("wang2014-baseline"))
 
 
-def test_wang_baseline_coarse_mesh(wang_coarse):
-    # Wang baseline, VFIFE at 5 m elements: every protocol row except the touchdown ones
-    assert not failing(wang_coarse, TOUCHDOWN_ROWS)
+def test_wang_form_is_compared_like_with_like(wang):
+    # a Wang form: the BVP solves the paper model once, the scene is converted once, and
+    # BOTH methods solve the converted scene, extensible on the soft-clay seabed
+    ms = wang.matched_scene
+    assert ms.ends.kind == "fixed" and wang.vfife_scene is ms
+    assert wang.bvp.info["model"] == {"axial": "extensible", "seabed": "elastic",
+                                      "seabed_stiffness": DEFAULT_SEABED_STIFFNESS}
+    assert wang.paper.info["model"] == {"axial": "inextensible", "seabed": "rigid"}
+    # the conversion: hang-off at the paper-model top point, anchor 300 m ahead of the
+    # touchdown on the seabed, the first segment 300 m longer than its suspended length
+    sp = wang.paper.summary()
+    assert ms.ends.hang_off == pytest.approx((sp["hang_off_x"], sp["hang_off_height"]))
+    assert ms.ends.anchor == (-DEFAULT_SEABED_LENGTH, 0.0)
+    assert ms.segments[0].length == pytest.approx(
+        wang.paper.info["first_segment_suspended_length"] + DEFAULT_SEABED_LENGTH)
+    assert ms.seabed.stiffness == DEFAULT_SEABED_STIFFNESS
 
 
-def test_wang_baseline_1m_all_rows():
-    # at 1 m elements the issue's targets: tension 0.5 % T_max, moment 2 % M_max,
-    # configuration 0.1 % of depth, touchdown 2 m. As is, every row but the moment profile
-    # passes: next to the touchdown the VFIFE moment curve lags the BVP one by ~0.2 m of
-    # arc length (measured 2.6 % of M_max), the sum of the line's 0.4 m stretch and the
-    # 1 m foundation length of the penalty seabed, which the inextensible BVP on a rigid
-    # seabed does not have. With 10x EA and a 16x stiffer seabed at 0.5 m (the sensitivity
-    # run) every row passes (measured 0.7 %), which pins the gap on those two differences.
-    comp = compare(resolve("wang2014-baseline"), element_length=1.0, sensitivity=True)
-    assert not failing(comp, {"moment"}), failing(comp)
-    stiff = [(r["quantity"], r["abs_diff"], r["tolerance"]) for r in comp.sensitivity_rows
-             if not r["pass"]]
-    assert not stiff, stiff
-    moment = {r["quantity"]: r for r in comp.rows}["moment"]
-    moment_stiff = {r["quantity"]: r for r in comp.sensitivity_rows}["moment"]
-    assert moment_stiff["abs_diff"] < 0.5 * moment["abs_diff"]
+def test_wang_baseline_passes_at_the_default_mesh(wang):
+    # every row within the protocol's tolerance (issue 11 targets: configuration 0.02 %
+    # of depth, tension 0.1 % of T_max, moment 0.5 % of M_max, touchdown x 0.5 m)
+    assert wang.passed, failing(wang)
+    rows = by_name(wang.rows)
+    # the largest moment difference (measured 0.37 % of M_max, issue 11) is VFIFE's
+    # first-order moment error where the moment is sharpest: on the seabed next to the
+    # lift-off, within the foundation length (4 EI/k)^(1/4) (4.4 m, ~4 elements)
+    ms = wang.matched_scene
+    foundation = (4.0 * ms.line_types["steel"].bending_stiffness / ms.seabed.stiffness) ** 0.25
+    assert foundation == pytest.approx(4.4, abs=0.05)
+    lift_off = wang.bvp.profile.tdp_s - wang.s_shift
+    assert lift_off - foundation <= rows["moment"]["at_s"] <= lift_off + 1.0
 
 
-def test_scr_single_segment():
-    # steel catenary riser with its own near-rigid seabed, 5 m elements
-    comp = compare(resolve("scr-steel"), element_length=5.0, sensitivity=False)
-    assert not failing(comp, TOUCHDOWN_ROWS)
+def test_wang_arc_lengths_in_the_scene_coordinate(wang):
+    # reported arc lengths are the scene's own (from the paper-model touchdown): the
+    # converted scene's s minus the 300 m added. The crest of the extensible line lies
+    # within its stretch (T/EA ~ 4e-4 x 770 m ~ 0.3 m) of the paper-model crest; without
+    # the shift it would be 300 m off
+    rows = by_name(wang.rows)
+    assert wang.s_shift == DEFAULT_SEABED_LENGTH
+    assert wang.bvp.profile.s[0] == pytest.approx(0.0, abs=1e-9)      # solved: from the anchor
+    crest_paper = wang.paper.summary()["crests"][0]["s"]
+    assert rows["crest1_s"]["bvp"] == pytest.approx(crest_paper, abs=1.0)
+    assert rows["crest1_s"]["vfife"] == pytest.approx(crest_paper, abs=1.0)
+    assert any("minus the 300 m" in n for n in wang.notes)
+
+
+def test_wang_paper_model_section_is_secondary(wang):
+    # the paper model (inextensible, rigid seabed) against the same VFIFE run: reported,
+    # not the verdict. Its touchdown is x = 0 by construction, the soft seabed moves the
+    # lift-off ~5 m (measured; ~ the 4.4 m foundation length): that model difference is
+    # an order of magnitude above the matched difference, which is why the verdict is
+    # the matched comparison
+    paper = by_name(wang.paper_rows)
+    matched = by_name(wang.rows)
+    assert wang.paper.summary()["tdp_x"] == pytest.approx(0.0, abs=1e-6)
+    assert paper["tdp_x"]["diff"] == pytest.approx(wang.vfife.summary()["tdp_x"], abs=1e-9)
+    assert abs(paper["tdp_x"]["diff"]) > 10.0 * abs(matched["tdp_x"]["diff"])
+    assert not all(r["pass"] for r in wang.paper_rows) and wang.passed
+
+
+def test_wang_report_and_agreement_csv(wang, tmp_path):
+    write(wang, tmp_path)
+    df = pd.read_csv(tmp_path / "agreement.csv")
+    assert tuple(df.columns) == AGREEMENT_COLUMNS          # contract with other tools
+    t = df.set_index("quantity")
+    # rel_diff is the signed (VFIFE - BVP) / basis with the basis of the tolerance:
+    # recomputed here from the profiles the solvers wrote
+    T_max = wang.bvp.profile.tension.max()
+    tension = by_name(wang.rows)["tension"]
+    assert t.loc["tension", "rel_diff"] == pytest.approx(tension["diff"] / T_max, rel=1e-6)
+    # (the CSV holds 8 significant digits: a 7 N difference of 831 kN values is known
+    # to ~1e-3 of itself from its bvp and vfife columns)
+    ho = t.loc["hang_off_tension"]
+    assert ho["rel_diff"] == pytest.approx((ho["vfife"] - ho["bvp"]) / ho["bvp"], rel=1e-2)
+    tdp = t.loc["tdp_x"]
+    assert tdp["rel_diff"] == pytest.approx((tdp["vfife"] - tdp["bvp"]) / wang.depth, rel=1e-4)
+    # every row has a relative form except the angle (an absolute tolerance in deg)
+    assert t["rel_diff"].isna().tolist() == [q == "hang_off_angle_deg" for q in t.index]
+    md = (tmp_path / "report.md").read_text()
+    assert "**Verdict: PASS**" in md
+    assert "Paper model (limit), not part of the verdict" in md
+    assert md.index("touchdown x") < md.index("# Agreement")              # headline first
+    assert md == report_markdown(wang)
+
+
+def test_fixed_ends_scene_single_segment():
+    # steel catenary riser (fixed ends on its own soft seabed): solved as it is by both
+    # methods; the paper model is the same scene with [model] inextensible + rigid
+    comp = compare(resolve("scr-steel"))
+    assert comp.s_shift == 0.0 and comp.matched_scene is comp.scene
+    assert comp.bvp.info["model"]["axial"] == "extensible"
+    assert comp.paper.info["model"] == {"axial": "inextensible", "seabed": "rigid"}
+    assert comp.passed, failing(comp)
 
 
 def test_two_buoy_sheared_current():
-    # two buoyancy sections and a sheared current (drag in both methods), 2 m elements
-    comp = compare(resolve("yu2021-a2-sheared"), element_length=2.0, sensitivity=False)
-    assert not failing(comp, TOUCHDOWN_ROWS)
+    # two buoyancy sections (1130 N/m weight jumps at the joints) and a sheared current
+    # (drag in both methods); the tension at the joints is where the nodal-average
+    # operator matters (compare.nodal_average)
+    comp = compare(resolve("yu2021-a2-sheared"), paper_model=False)
+    assert comp.passed, failing(comp)
 
 
 def _buoyancy_plus_5pct(scene):
@@ -77,19 +150,26 @@ def _drag_halved(scene):
                                      for k, v in scene.line_types.items()})
 
 
-def test_negative_control_buoyancy():
-    # the same comparison with 5 % more buoyancy in VFIFE only must fail, and not only on
-    # the touchdown rows: the configuration (crest ~10 m higher) must be caught
-    comp = compare(resolve("wang2014-baseline"), element_length=5.0, sensitivity=False,
+def test_negative_control_buoyancy(wang):
+    # the same comparison with 5 % more buoyancy in VFIFE only must fail, and on the
+    # configuration (the crest rises by metres), rows that pass without the change
+    comp = compare(resolve("wang2014-baseline"), paper_model=False,
                    vfife_modifier=_buoyancy_plus_5pct)
-    names = {q for q, _, _ in failing(comp, TOUCHDOWN_ROWS)}
+    assert not comp.passed
+    names = {q for q, _, _ in failing(comp)}
     assert {"configuration", "crest1_height"} <= names
+    ok = by_name(wang.rows)
+    assert ok["configuration"]["pass"] and ok["crest1_height"]["pass"]
+    assert by_name(comp.rows)["configuration"]["abs_diff"] > 10.0 * ok["configuration"]["tolerance"]
 
 
 def test_negative_control_drag_halved():
     # half the drag in VFIFE only, current +1.5 m/s: the configuration and the hang-off
-    # angle must fail
-    comp = compare(resolve("wang2014-current-1p5"), element_length=5.0, sensitivity=False,
-                   vfife_modifier=_drag_halved)
-    names = {q for q, _, _ in failing(comp, TOUCHDOWN_ROWS)}
+    # angle must fail, and they pass without the change
+    scene = resolve("wang2014-current-1p5")
+    comp = compare(scene, paper_model=False, vfife_modifier=_drag_halved)
+    assert not comp.passed
+    names = {q for q, _, _ in failing(comp)}
     assert {"configuration", "hang_off_angle_deg"} <= names
+    ok = by_name(compare(scene, paper_model=False).rows)
+    assert ok["configuration"]["pass"] and ok["hang_off_angle_deg"]["pass"]
