@@ -136,7 +136,7 @@ def test_agreement_csv_columns_are_the_contract():
 
 
 def test_verdict_ignores_the_paper_model_rows_and_report_reads():
-    from verification.compare import report_markdown
+    from verification.compare_report import report_markdown
     p = _line()
     q = _line()
     q.tension = p.tension * (1.0 + 1e-14)       # round-off, not a difference

@@ -16,7 +16,8 @@ import pytest
 
 from riser.transform import DEFAULT_SEABED_STIFFNESS
 from verification.catalog import resolve
-from verification.compare import AGREEMENT_COLUMNS, compare, report_markdown, write
+from verification.compare import AGREEMENT_COLUMNS, compare
+from verification.compare_report import report_markdown, write
 from verification.equivalence import DEFAULT_SEABED_LENGTH
 
 

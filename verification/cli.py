@@ -19,7 +19,7 @@ STUDIES = ("wang2014", "yu2021", "compare", "stress", "cost")
 # scenes with a cross-method comparison report in reports/compare/ (reproduce compare|all)
 COMPARE_SCENES = ("wang2014-baseline", "wang2014-current-neg1p5", "wang2014-current-neg0p75",
                   "wang2014-current-0p75", "wang2014-current-1p5", "scr-steel",
-                  "yu2021-a2-sheared", "yu2021-a3")
+                  "yu2021-a1", "yu2021-a2", "yu2021-a2-sheared", "yu2021-a3", "yu2021-a4")
 
 
 def _err(msg: str) -> None:
@@ -131,13 +131,13 @@ def run_unit(study_name: str, scene_name: str | None, out: str, note: str = "") 
         from . import yu2021
         yu2021.run(out_dir)
     elif study_name == "compare":
-        from . import compare
+        from . import compare, compare_report
         from .catalog import resolve
         try:
             comp = compare.compare(resolve(scene_name))
         except RuntimeError as exc:
             return f"compare {scene_name}: {exc}"
-        compare.write(comp, out_dir / scene_name)
+        compare_report.write(comp, out_dir / scene_name)
         return (f"compare {scene_name}: {'PASS' if comp.passed else 'FAIL'} "
                 f"({time.perf_counter() - t0:.1f} s)")
     elif study_name == "stress":
@@ -190,13 +190,13 @@ def cmd_reproduce(args) -> int:
 
 
 def cmd_compare(args) -> int:
-    from . import compare
+    from . import compare, compare_report
     from .catalog import resolve
     scene = resolve(args.scene)
     comp = compare.compare(scene, element_length=args.element_length,
-                           sensitivity=not args.no_sensitivity)
+                           paper_model=not args.no_paper_model)
     out = Path(args.out) if args.out else Path("out") / scene.name / "compare"
-    compare.write(comp, out)
+    compare_report.write(comp, out)
     for r in comp.rows:
         flag = "ok  " if r["pass"] else "FAIL"
         rel = f"{100 * r['rel_diff']:+.4f} %" if r["rel_diff"] is not None else ""
@@ -281,8 +281,9 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("scene", help="built-in scene name or path to a .toml scene file")
     s.add_argument("--out", help="output directory (default out/SCENE/compare)")
     s.add_argument("--element-length", type=float, help="vfife element length [m]")
-    s.add_argument("--no-sensitivity", action="store_true",
-                   help="skip the VFIFE sensitivity run (10x EA, 16x seabed stiffness, half the element length)")
+    s.add_argument("--no-paper-model", action="store_true",
+                   help="skip the secondary comparison with the BVP's paper model (inextensible "
+                        "line on a rigid seabed), which is not part of the verdict")
     s.set_defaults(func=cmd_compare)
     s = sub.add_parser("regress", help="compare every built-in scene with its stored summary")
     s.add_argument("scenes", nargs="*", help="only these built-in scenes")

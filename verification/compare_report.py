@@ -1,0 +1,222 @@
+"""Writing a :class:`verification.compare.Comparison`: agreement.csv, report.md (verdict,
+headline, the rows with signed differences, units and tolerance bases, the paper-model
+section) and the plots."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from .compare import (AGREEMENT_COLUMNS, ROUND_OFF, Comparison, _shifted, model_text,
+                      nodal_average, signed_moment)
+from .report import GENERATED_NOTE, fmt, md_table, new_figure, save
+
+
+def write(comp: Comparison, out_dir: str | Path) -> None:
+    """agreement.csv, report.md and the plots."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    comp.frame().to_csv(out / "agreement.csv", index=False, float_format="%.8g")
+    comp.bvp.write(out / "bvp")
+    comp.vfife.write(out / "vfife")
+    if comp.paper is not None and comp.paper.converged:
+        comp.paper.write(out / "bvp_paper_model")
+    _plots(comp, out)
+    (out / "report.md").write_text(report_markdown(comp))
+
+
+def _is_zero(value, scale) -> bool:
+    return scale is not None and scale > 0 and abs(value) <= ROUND_OFF * scale
+
+
+def _num(value, scale=None, digits: int = 6) -> str:
+    """A number for the tables; 0 when below round-off of ``scale``."""
+    if value is None or (isinstance(value, float) and not math.isfinite(value)):
+        return ""
+    if isinstance(value, (int, np.integer)) and not isinstance(value, bool):
+        return str(int(value))
+    if _is_zero(value, scale):
+        return "0"
+    return fmt(float(value), digits)
+
+
+def _signed(value, scale=None, digits: int = 4) -> str:
+    if value is None:
+        return ""
+    if value == 0 or _is_zero(value, scale):
+        return "0"
+    return f"{value:+.{digits}g}"
+
+
+def _rel(r: dict) -> str:
+    """Signed relative difference in % of the row's basis ('' when it has none)."""
+    rel = r.get("rel_diff")
+    if rel is None:
+        return ""
+    if abs(rel) <= ROUND_OFF:
+        return "0"
+    label = r.get("basis_label") or ""
+    return f"{100.0 * rel:+.3g} %" + (f" of {label}" if label else "")
+
+
+def _scale(r: dict):
+    """Scale below which a value of row ``r`` is round-off: its basis, else its size."""
+    if r.get("basis"):
+        return r["basis"]
+    vals = [abs(x) for x in (r.get("bvp"), r.get("vfife")) if x is not None]
+    return max(vals) if vals else None
+
+
+def _where(r: dict) -> str:
+    return f" at s = {r['at_s']:.1f} m" if r.get("at_s") is not None else ""
+
+
+def _rows_table(rows: list[dict]) -> str:
+    """The agreement rows: values, the signed difference VFIFE - BVP in the quantity's
+    unit and relative to the basis of its tolerance, the tolerance and its basis."""
+    out = []
+    for r in rows:
+        sc = _scale(r)
+        note = f" ({r['note']})" if r.get("note") else ""
+        out.append((f"`{r['quantity']}`", r.get("unit", ""), _num(r["bvp"], sc),
+                    _num(r["vfife"], sc), _signed(r.get("diff"), sc) + _where(r) + note, _rel(r),
+                    _num(r["tolerance"]), r.get("tol_label", ""),
+                    "yes" if r["pass"] else "**no**"))
+    return md_table(["quantity", "unit", "BVP", "VFIFE", "VFIFE - BVP", "relative",
+                     "tolerance", "tolerance basis", "pass"], out)
+
+
+def _headline(comp: Comparison) -> list[str]:
+    names = {"configuration": "configuration (largest distance between the lines)",
+             "tension": "effective tension", "moment": "bending moment",
+             "tdp_x": "touchdown x"}
+    rows = []
+    for q, r in comp.worst().items():
+        rows.append((names[q], _signed(r.get("diff"), _scale(r)) + f" {r['unit']}" + _where(r),
+                     _rel(r), r.get("tol_label", ""), "yes" if r["pass"] else "**no**"))
+    return [md_table(["worst difference (VFIFE - BVP)", "value", "relative", "tolerance",
+                      "pass"], rows)]
+
+
+def report_markdown(comp: Comparison, heading: str = "#") -> str:
+    sc = comp.scene
+    ms = comp.matched_scene or comp.vfife_scene
+    b, v = comp.bvp, comp.vfife
+    verdict = "PASS" if comp.passed else "FAIL"
+    failed = [r["quantity"] for r in comp.rows if not r["pass"]]
+    lines = [
+        f"{heading} VFIFE vs BVP: `{sc.name}`",
+        "",
+        GENERATED_NOTE,
+        "",
+        f"**Verdict: {verdict}**" + (f" (outside tolerance: {', '.join(failed)})" if failed else
+                                     " (every metric within its tolerance)"),
+        "",
+    ]
+    lines += _headline(comp)
+    lines += [
+        "",
+        f"- Scene: {sc.title or sc.name}.",
+        f"- Model solved by both methods: {model_text(ms)}.",
+    ]
+    lines += [f"- {n}" for n in comp.notes]
+    lines += [
+        f"- BVP: {b.message}, {b.info.get('nodes')} nodes, {b.wall_time_s:.2f} s.",
+        f"- VFIFE: {v.message}; {v.info.get('elements')} elements of "
+        f"{fmt(v.info.get('element_length'), 4)} m, time step "
+        f"{fmt(v.info.get('time_step'), 4)} s, {v.wall_time_s:.2f} s.",
+        f"- Lengths are normalised by {comp.depth:.1f} m "
+        f"({'water depth' if sc.water_depth else 'hang-off height; the scene gives no depth'}).",
+        "",
+        "Both methods report effective tension and bending moment, compared at the same "
+        "arc length: at the VFIFE nodes, the BVP interpolated there (the BVP tension "
+        "sampled at the VFIFE element midpoints and averaged to the nodes, as VFIFE reports "
+        "its element forces). Differences are signed VFIFE - BVP; `relative` divides "
+        "them by the basis of the row's tolerance (depth, T_max or M_max of the BVP, or the BVP value itself); the "
+        "configuration is a distance (unsigned); values below "
+        f"{ROUND_OFF:g} of their basis are round-off and printed as 0. The tolerances and "
+        "their reasons: `verification/tolerances.py`.",
+        "", f"{heading}# Agreement (the verdict)", "",
+    ]
+    lines.append(_rows_table(comp.rows))
+    if comp.paper is not None:
+        lines += ["", f"{heading}# Paper model (limit), not part of the verdict", "",
+                  "The same VFIFE run against the BVP in the paper model of Wang et al. (2014): "
+                  "an inextensible line on a rigid seabed (touchdown with zero angle and "
+                  "moment), the limit EA -> inf, k -> inf of the model above"
+                  + (" (the scene's own paper-model solution, from which it was converted)"
+                     if comp.s_shift else "") + ". The differences show what the axial "
+                  "stretch and the soft seabed change; a tolerance is not applied to them.", ""]
+        if comp.paper_rows:
+            base = {r["quantity"]: r for r in comp.rows}
+            rows = []
+            for r in comp.paper_rows:
+                r0 = base.get(r["quantity"])
+                sc0 = _scale(r)
+                rows.append((f"`{r['quantity']}`", r.get("unit", ""), _num(r["bvp"], sc0),
+                             _signed(r.get("diff"), sc0) + _where(r), _rel(r),
+                             _rel(r0) if r0 else "",
+                             "yes" if r["pass"] else "no"))
+            lines.append(md_table(["quantity", "unit", "BVP paper model", "VFIFE - paper",
+                                   "relative", "relative, matched model", "within tolerance"],
+                                  rows))
+        else:
+            lines.append(f"The paper-model BVP did not converge: {comp.paper.message}")
+    lines += ["", f"{heading}# Figures", "", "![configurations](configurations.png)", "",
+              "![tension, moment, shear](forces.png)", "", "![differences](differences.png)", "",
+              "Files: `agreement.csv` (columns " + ", ".join(f"`{c}`" for c in AGREEMENT_COLUMNS)
+              + "; `rel_diff` is the signed relative difference above), `bvp/` and `vfife/` "
+              "(each `profile.csv`, `summary.json`, in the solved scene's arc length)"
+              + (", `bvp_paper_model/`" if comp.paper is not None and comp.paper.converged
+                 else "") + ".", ""]
+    return "\n".join(lines)
+
+
+def _plots(comp: Comparison, out: Path) -> None:
+    bp = _shifted(comp.bvp.profile, comp.s_shift)
+    vp = _shifted(comp.vfife.profile, comp.s_shift)
+    pp = comp.paper.profile if comp.paper is not None and comp.paper.converged else None
+    fig, axes = new_figure(1, 1, (9, 5))
+    ax = axes[0, 0]
+    ax.plot(bp.x, bp.y, "-", lw=2.0, label="BVP")
+    ax.plot(vp.x, vp.y, "--", lw=1.2, label="VFIFE")
+    if pp is not None:
+        ax.plot(pp.x, pp.y, ":", lw=1.0, color="0.4", label="BVP paper model")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m] above the seabed")
+    ax.set_title(f"{comp.scene.name}: configurations")
+    ax.legend()
+    ax.grid(alpha=0.3)
+    save(fig, out / "configurations.png")
+    fig, axes = new_figure(3, 1, (9, 10))
+    for ax, key, label in zip(axes[:, 0], ("tension", "moment", "shear"),
+                              ("effective tension [kN]", "bending moment [kN m]", "shear [kN]")):
+        ax.plot(bp.s, getattr(bp, key) / 1e3, "-", lw=2.0, label="BVP")
+        ax.plot(vp.s, getattr(vp, key) / 1e3, "--", lw=1.2, label="VFIFE")
+        if pp is not None:
+            ax.plot(pp.s, getattr(pp, key) / 1e3, ":", lw=1.0, color="0.4",
+                    label="BVP paper model")
+        ax.set_ylabel(label)
+        ax.grid(alpha=0.3)
+    axes[0, 0].legend()
+    axes[2, 0].set_xlabel("arc length s [m] (the scene's coordinate)")
+    save(fig, out / "forces.png")
+    # the differences as the metrics take them: at the VFIFE nodes (see agreement)
+    lo, hi = max(bp.s[0], vp.s[0]), min(bp.s[-1], vp.s[-1])
+    sel = (vp.s >= lo - 1e-9) & (vp.s <= hi + 1e-9)
+    g = vp.s[sel]
+    fig, axes = new_figure(3, 1, (9, 9))
+    dT = vp.tension[sel] - nodal_average(vp.s, bp.s, bp.tension)[sel]
+    dM = signed_moment(vp)[sel] - np.interp(g, bp.s, signed_moment(bp))
+    # vertical offset at the same arc length (a simple view of the configuration difference)
+    dy = vp.y[sel] - np.interp(g, bp.s, bp.y)
+    for ax, d, label in zip(axes[:, 0], (dT / 1e3, dM / 1e3, dy),
+                            ("VFIFE - BVP tension [kN]", "VFIFE - BVP moment [kN m]",
+                             "VFIFE - BVP height at same s [m]")):
+        ax.plot(g, d)
+        ax.set_ylabel(label)
+        ax.grid(alpha=0.3)
+    axes[2, 0].set_xlabel("arc length s [m] (the scene's coordinate)")
+    save(fig, out / "differences.png")
