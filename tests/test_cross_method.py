@@ -174,3 +174,29 @@ def test_negative_control_drag_halved():
     assert {"configuration", "hang_off_angle_deg"} <= names
     ok = by_name(compare(scene, paper_model=False).rows)
     assert ok["configuration"]["pass"] and ok["hang_off_angle_deg"]["pass"]
+
+
+# ------------------------------------------------------------------ every supported scene
+# Hard scenes left out, each for a stated reason (README / the closing note of issue 11):
+# hard-flexible: EI = 1e3 N m2, bending length sqrt(EI/T) ~ 0.04-0.07 m, far below any
+#   practical VFIFE element: its moment is unresolved at 1 m (21 % of a 3.3 N m M_max);
+# hard-buoyancy-loss, hard-current-neg2p5: the BVP does not converge (stated failure);
+# hard-out-of-plane-current: 3D, the BVP refuses it.
+# hard-coarse-elements, hard-large-heave, hard-long-dynamic set their own element length
+# (20, 2, 5 m) for their stress purpose; their statics are compared at the 1 m default.
+HARD_COMPARED = ("hard-coarse-elements", "hard-current-pos2p5", "hard-current-reversing",
+                 "hard-deep-scr", "hard-large-buoyancy", "hard-large-heave",
+                 "hard-long-dynamic", "hard-many-buoys", "hard-slack-touchdown", "hard-stiff")
+BUILTIN = ("wang2014-baseline", "wang2014-current-neg1p5", "wang2014-current-neg0p75",
+           "wang2014-current-0p75", "wang2014-current-1p5", "scr-steel", "yu2021-a1",
+           "yu2021-a2", "yu2021-a2-sheared", "yu2021-a3", "yu2021-a4")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", BUILTIN + HARD_COMPARED)
+def test_every_supported_scene_passes_at_1m(name):
+    # issue 11's targets at the default element length: configuration <= 0.02 % of depth,
+    # tension <= 0.1 % of T_max, moment <= 0.5 % of M_max, touchdown <= 0.5 m (the
+    # protocol's tdp_x tolerance is tighter), every scalar row inside its tolerance
+    comp = compare(resolve(name), element_length=1.0, paper_model=False)
+    assert comp.passed, failing(comp)
