@@ -26,6 +26,7 @@ def build_profile(prob, sol, water_depth: float | None) -> tuple[Profile, dict]:
     step = float(np.clip(float(np.min(np.sqrt(EI / Tpeak))) / 8.0, 0.05, 0.5))
     cols = {k: [] for k in ("s", "x", "y", "theta", "M", "F", "T", "kappa")}
     s0 = 0.0
+    strain = 0.0
     grounded = prob.first_total - Ls[0] if prob.form == "fixed_seabed" else 0.0
     for k in range(n):
         m = max(20, int(math.ceil(Ls[k] / step)))
@@ -37,10 +38,11 @@ def build_profile(prob, sol, water_depth: float | None) -> tuple[Profile, dict]:
         for key, i in (("x", IX), ("y", IY), ("theta", ITH), ("M", IM), ("F", IF), ("T", IT)):
             cols[key].append(Y[i])
         cols["kappa"].append(Y[IM] / EI[k])
+        strain = max(strain, float(np.max(np.abs(Y[IT]))) * float(model.inv_EA[k]))
         s0 += Ls[k]
     c = {k: np.concatenate(v) for k, v in cols.items()}
     tdp_s = None
-    checks: dict = {}
+    checks: dict = {"max_strain": strain}
     if prob.form in ("tdp_tension", "hang_off_angle", "fixed_seabed", "fixed_lifted"):
         tdp_s = grounded
     if prob.form == "fixed_lifted":

@@ -49,6 +49,9 @@ from .mesh import clustered_mesh
 from .output import build_profile, grounded_drag
 
 DEFAULTS = {"tolerance": 1.0e-6, "max_nodes": 30000, "initial_nodes": 400}
+#: strain T/EA above which a converged solution carries a warning: the linear axial model
+#: is a small-strain model (synthetic ropes stretch a few per cent, steel yields at ~0.2 %)
+STRAIN_WARNING = 0.01
 
 
 @dataclass
@@ -140,7 +143,8 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
     info["strategy"] = split_tried + how
     if sol is None or not _good(sol, prob):
         msg = sol.message if sol is not None else "no solution"
-        return fail(f"solve_bvp did not converge ({msg}); tried: {split_tried}{how}")
+        return fail(f"solve_bvp did not converge ({msg}); tried: {split_tried}{how}"
+                    + _second_contact(prob, tau0))
 
     info["nodes"] = int(sol.x.size)
     info["iterations"] = int(sol.niter)
@@ -150,8 +154,32 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
     except BVPFailure as exc:
         return fail(str(exc))
     info.update(checks)
+    if checks["max_strain"] > STRAIN_WARNING:
+        info["warnings"].append(
+            f"largest axial strain T/EA = {100 * checks['max_strain']:.3g} %: beyond the small "
+            f"strains ({100 * STRAIN_WARNING:g} %) of a linear EA (a steel pipe yields at "
+            "~0.2 %); check the line length and axial_stiffness")
     return SolveResult("bvp", scene.name, True, f"converged ({how})", profile,
                        time.perf_counter() - t0, effects, info)
+
+
+def _second_contact(prob: _Problem, tau: np.ndarray) -> str:
+    """A reason to add to a failure when the starting catenary dips below the seabed away
+    from the contact zone at the anchor: the solver starts from one contact zone only."""
+    m = prob.model
+    if m.k_seabed <= 0.0 and prob.form not in ("fixed_seabed", "fixed_lifted"):
+        return ""
+    y = prob.guess(tau)[IY::NSTATE] * m.scale[IY]          # (segments, nodes)
+    L = m.segment_lengths(prob.guess_p)
+    first = 2 if m.split_first else 1                       # skip the contact zone's piece(s)
+    below = y[first:] < -1.0
+    if not np.any(below):
+        return ""
+    k, j = np.unravel_index(int(np.argmin(np.where(below, y[first:], np.inf))), below.shape)
+    s = float(np.sum(L[:first + k]) + L[first + k] * tau[j])
+    return (f"; the starting catenary passes {-float(y[first + k, j]):.3g} m below the seabed "
+            f"at s = {s:.1f} m: a second touchdown, which the BVP's start (one contact zone "
+            "from the anchor) does not represent")
 
 
 def _contact_zone_violation(prob: _Problem, sol) -> str:

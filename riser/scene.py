@@ -552,8 +552,8 @@ def _check_geometry(scene: Scene) -> None:
         # inextensible model cannot reach
         if scene.axial_model == "inextensible" and scene.total_length <= chord:
             raise SceneError(src, "segments", f"line length {scene.total_length:g} m is not longer "
-                             f"than the distance {chord:g} m between anchor and hang_off: an "
-                             "inextensible line cannot reach ([model] axial = \"extensible\" "
+                             f"than the distance {chord:g} m between anchor and hang_off: too "
+                             "short for an inextensible line ([model] axial = \"extensible\" "
                              "lets it stretch)")
         if scene.water_depth is not None and e.hang_off[1] > scene.water_depth:
             raise SceneError(src, "ends.hang_off[1]", f"must be <= water_depth "

@@ -88,7 +88,8 @@ def test_fictitious_inertia_gives_every_node_the_axial_step():
 
 def test_buoyancy_loss_scene():
     # 100 % buoyancy loss in the middle section of the Yu A3 lazy wave: the middle span
-    # falls onto the seabed (a second touchdown). The BVP (one touchdown) must say so;
+    # falls onto the seabed (a second touchdown). The BVP, whose start has one contact zone
+    # from the anchor, does not converge and must say why;
     # VFIFE converges from a weight continuation (the EI = 0 start passes 85 m below the
     # seabed).
     row, _ = stress.run_one("hard-buoyancy-loss", "bvp")
@@ -118,22 +119,27 @@ def test_buoyancy_loss_scene():
 def test_equilibrium_does_not_depend_on_the_relaxation_path():
     """Two relaxation paths (coarse stage at 10 m or 5 m before the 2 m mesh) reach the same
     equilibrium of a lazy wave in a sheared current, whose soft lateral/touchdown mode
-    creeps: with the creep test both land within a few creep tolerances of each other
-    (measured 1.8 cm; creep tolerance 1e-5 x the line length per path), without it
-    1.5 m and 170 N of touchdown tension apart (the force residual alone stops on the way)."""
+    creeps: with the creep test both land within one creep tolerance each of the same
+    point, without it 1.5 m and 170 N of touchdown tension apart (the force residual alone
+    stops on the way). The creep tolerance is 3e-6 of the line length here: on the soft-clay
+    seabed (1e5 N/m2) the Aitken estimate of the remaining creep undershoots the touchdown
+    mode's by up to 1.5x at the default 1e-5 (paths 2.5 cm apart for estimates summing to
+    1.6 cm); at 3e-6 they are 9 um apart."""
     import dataclasses
 
     import vfife
     sc = resolve("yu2021-a2-sheared")
+    ct = 3.0e-6
     prof = []
     for hc in (10.0, 5.0):
-        s2 = dataclasses.replace(sc, vfife={**sc.vfife, "coarse_element_length": hc})
+        s2 = dataclasses.replace(sc, vfife={**sc.vfife, "coarse_element_length": hc,
+                                            "creep_tolerance": ct})
         r = vfife.solve(s2, element_length=2.0)
         assert r.converged, r.message
         assert r.info["creep_m"] < r.info["creep_tolerance_m"]
         prof.append(r.profile)
     a, b = prof
-    tol = 2.0 * prof[0].s[-1] * 1e-5          # one creep tolerance per path
+    tol = 2.0 * prof[0].s[-1] * ct            # one creep tolerance per path
     assert np.max(np.hypot(a.x - b.x, a.y - b.y)) < tol
 
 

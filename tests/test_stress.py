@@ -3,8 +3,12 @@ with a clear, classified reason; never a NaN, an exception or a violated equilib
 
 from __future__ import annotations
 
+import math
+
 import pytest
 
+import bvp
+from riser.scene import load_scene
 from verification import stress
 
 FAST = [
@@ -28,12 +32,27 @@ def test_hard_case_outcome(name, method, expected):
 
 
 def test_outcome_never_silent_on_bad_geometry(tmp_path):
-    # a line that cannot reach the hang-off is rejected by the loader, a classified
-    # failure rather than an exception
+    # a line 3000 m long between ends 3311 m apart: an inextensible line cannot reach the
+    # hang-off and is rejected by the loader, a classified failure rather than an exception
     bad = tmp_path / "short.toml"
     text = (stress.HARD_DIR / "hard-deep-scr.toml").read_text().replace(
-        "length = 4000.0", "length = 3000.0")
+        "length = 4000.0", "length = 3000.0") + '\n[model]\naxial = "inextensible"\n'
     bad.write_text(text)
     row, _ = stress.run_one(str(bad), "bvp")
     assert row["outcome"] == "failed"
-    assert "shorter than the distance" in row["message"]
+    assert "not longer than the distance" in row["message"]
+
+
+def test_taut_steel_line_is_solved_with_a_strain_warning(tmp_path):
+    # the same line, extensible (the default for fixed ends), is a taut line that stretches
+    # 10 %: solved, but never silently: the strain T/EA = chord / L - 1 + O(w L / T) is
+    # reported, far beyond a steel pipe's elastic range
+    taut = tmp_path / "taut.toml"
+    taut.write_text((stress.HARD_DIR / "hard-deep-scr.toml").read_text().replace(
+        "length = 4000.0", "length = 3000.0"))
+    res = bvp.solve(load_scene(taut))
+    assert res.converged, res.message
+    chord = math.hypot(1400.0, 3000.0)
+    # weight adds w L sin / (2 EA) ~ 0.3 % of the strain on average: 2 % of it covers it
+    assert res.info["max_strain"] == pytest.approx(chord / 3000.0 - 1.0, rel=2e-2)
+    assert any("axial strain" in w for w in res.info["warnings"])
