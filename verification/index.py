@@ -41,8 +41,12 @@ def _compare(d: Path):
     df = pd.read_csv(d / "agreement.csv")
     failed = df[~df["pass"].astype(bool)].quantity.tolist()
     rows = df.set_index("quantity")
-    text = ", ".join(f"{q} {pct(rows.loc[q, 'rel_diff'], 2)}" for q in ("configuration", "tension", "moment")
+    bases = {"configuration": "of depth", "tension": "of T_max", "moment": "of M_max"}
+    text = ", ".join(f"{q} {pct(rows.loc[q, 'rel_diff'], 2)} {bases[q]}" for q in bases
                      if q in rows.index)
+    if "tdp_x" in rows.index:
+        tdp = rows.loc["tdp_x"]
+        text += f", touchdown {tdp['vfife'] - tdp['bvp']:+.3f} m"
     if failed:
         text += f"; outside tolerance: {', '.join(failed)}"
     return "1 scene", text, "pass" if not failed else "fail"

@@ -120,8 +120,8 @@ def tolerance(name: str, *, bvp_value: float | None = 0.0, depth: float = 1.0,
     kind, value = TOLERANCES[base_name(name)]
     u = unit(name)
     if kind == "abs":
-        if u == "m":
-            return {"tol": value, "label": f"{value:g} m", "basis": depth, "basis_label": "depth"}
+        # an absolute tolerance has no basis: the row's difference stays in its unit, the
+        # same normalisation as its tolerance (no relative difference is reported)
         return {"tol": value, "label": f"{value:g} {u}", "basis": None, "basis_label": ""}
     basis = {"of_depth": depth, "of_T_max": max_tension, "of_M_max": max_moment,
              "rel": abs(bvp_value or 0.0)}[kind]
@@ -130,17 +130,8 @@ def tolerance(name: str, *, bvp_value: float | None = 0.0, depth: float = 1.0,
 
 
 def tolerance_value(name: str, *, bvp_value: float = 0.0, depth: float = 1.0,
-                    max_tension: float = 1.0, max_moment: float = 1.0,
-                    max_value: float | None = None) -> tuple[float, str]:
-    """(absolute tolerance, description) for quantity ``name``; ``max_value`` is the
-    largest value of that quantity along the line (T_max for tension rows, M_max for
-    moment rows), kept for callers of the older signature."""
-    kind, _ = TOLERANCES[base_name(name)]
-    if max_value is not None:
-        if kind == "of_T_max":
-            max_tension = max_value
-        elif kind == "of_M_max":
-            max_moment = max_value
+                    max_tension: float = 1.0, max_moment: float = 1.0) -> tuple[float, str]:
+    """(absolute tolerance, description) for quantity ``name`` (see :func:`tolerance`)."""
     t = tolerance(name, bvp_value=bvp_value, depth=depth, max_tension=max_tension,
                   max_moment=max_moment)
     return t["tol"], t["label"]
