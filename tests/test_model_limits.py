@@ -455,3 +455,28 @@ def test_bad_input_exit_code_of_the_process(tmp_path):
     assert proc.returncode == 2, proc.stderr
     assert proc.stderr.strip().splitlines() == [
         "error: bad.toml: seabed.stiffness: must be a finite number, got nan"]
+
+
+def test_wang_form_extensible_top_moves_by_the_integrated_strain():
+    """Every end form gains the stretch: the touchdown-tension form of the Wang baseline,
+    extensible, puts its free top where the inextensible line's top is plus the integrated
+    strain, dr = int (T / EA) (cos theta, sin theta) ds along the inextensible solution
+    (first-order perturbation: the shape change it causes is second order, O(eps^2 L) with
+    eps = T/EA <= 3.7e-4, i.e. ~1e-4 m over 2600 m, against a top shift of ~0.3 m)."""
+    from scipy.integrate import trapezoid
+
+    from verification.catalog import resolve
+    sc = resolve("wang2014-baseline")
+    ref = bvp.solve(sc)
+    ext = bvp.solve(sc.replace(model={"axial": "extensible"}))
+    assert ref.converged and ext.converged
+    assert "axial" in ext.effects and "axial" not in ref.effects
+    p = ref.profile
+    EA = sc.line_types["steel"].axial_stiffness
+    dx = trapezoid(p.tension / EA * np.cos(p.theta), p.s)
+    dy = trapezoid(p.tension / EA * np.sin(p.theta), p.s)
+    a, b = ref.summary(), ext.summary()
+    assert b["hang_off_x"] - a["hang_off_x"] == pytest.approx(dx, rel=1e-2)
+    assert b["hang_off_height"] - a["hang_off_height"] == pytest.approx(dy, rel=1e-2)
+    # the touchdown tension is the given one in both
+    assert b["tdp_tension"] == pytest.approx(160000.0, rel=1e-9)
