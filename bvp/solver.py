@@ -30,11 +30,9 @@ from __future__ import annotations
 
 import math
 import time
-import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.integrate import solve_bvp
 
 from riser.errors import UnsupportedSceneError
 from riser.result import SolveResult
@@ -47,6 +45,7 @@ from .equations import IM, IT, ITH, IX, IY, NSTATE, BeamModel
 from .guess import BVPFailure
 from .mesh import clustered_mesh
 from .output import build_profile, grounded_drag
+from .strategy import good, solve_with_continuation
 
 DEFAULTS = {"tolerance": 1.0e-6, "max_nodes": 30000, "initial_nodes": 400}
 #: strain T/EA above which a converged solution carries a warning: the linear axial model
@@ -130,8 +129,8 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
             prob = _build_problem(scene, split)
         except BVPFailure as exc:
             return fail(str(exc))
-        sol, how = _solve_with_continuation(prob, tau0, settings, continuation)
-        if prob.form == "fixed_liftoff" and sol is not None and _good(sol, prob):
+        sol, how = solve_with_continuation(prob, tau0, settings, continuation)
+        if prob.form == "fixed_liftoff" and sol is not None and good(sol, prob):
             # the contact zone must be in contact (y <= 0 up to 1 % of the sink depth w/k),
             # else solve the unilateral law everywhere (a failure to converge is final: the
             # unilateral form starts from the same guess and only adds the kink)
@@ -141,7 +140,7 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
                 continue
         break
     info["strategy"] = split_tried + how
-    if sol is None or not _good(sol, prob):
+    if sol is None or not good(sol, prob):
         msg = sol.message if sol is not None else "no solution"
         return fail(f"solve_bvp did not converge ({msg}); tried: {split_tried}{how}"
                     + _second_contact(prob, tau0))
@@ -360,94 +359,3 @@ def _boundary_conditions(form: str, scene: Scene, model: BeamModel, L: np.ndarra
             return np.array([ya[IX] - xa, ya[IY] - ya0, ya[IM], *continuity(ya, yb),
                              yb[top + IM], yb[top + IX] - xh, yb[top + IY] - yh])
     return bc
-
-
-# ---------------------------------------------------------------------------- solving
-def _run(prob: _Problem, tau: np.ndarray, Y: np.ndarray, p: np.ndarray, settings: dict):
-    model = prob.model
-    kw = dict(tol=settings["tolerance"], max_nodes=settings["max_nodes"])
-    with warnings.catch_warnings(), np.errstate(all="ignore"):
-        warnings.simplefilter("ignore")
-        if p.size:
-            return solve_bvp(model.rhs, prob.bc, tau, Y, p=p, fun_jac=model.jac, **kw)
-        return solve_bvp(lambda t, y: model.rhs(t, y, p), prob.bc, tau, Y,
-                         fun_jac=lambda t, y: model.jac(t, y, p)[0], **kw)
-
-
-TRIAL_MAX_NODES = 8000   # node cap for cold starts and continuation steps (a failing
-                         # attempt at the full cap costs ~40 s; converged Wang runs use ~1k)
-
-
-def _solve_with_continuation(prob: _Problem, tau0: np.ndarray, settings: dict,
-                             continuation: bool):
-    """Cold start from the catenary; if that fails, walk a load factor lam from 0 to 1
-    that scales the current speed and the buoyancy (negative weights).
-
-    Returns (solution or None, description of what was tried)."""
-    trial = {**settings, "max_nodes": min(settings["max_nodes"], TRIAL_MAX_NODES)}
-    Y0 = prob.guess(tau0)
-    sol = _run(prob, tau0, Y0, prob.guess_p, trial)
-    if _good(sol, prob):
-        return sol, "cold start from catenary"
-    if "mesh nodes" in sol.message and trial["max_nodes"] < settings["max_nodes"]:
-        # a genuinely fine problem (very flexible pipe): allow the full node cap once
-        sol = _run(prob, tau0, Y0, prob.guess_p, settings)
-        if _good(sol, prob):
-            return sol, "cold start from catenary (full node cap)"
-    if "mesh nodes" in sol.message and trial["max_nodes"] >= settings["max_nodes"]:
-        return sol, (f"the node cap max_nodes = {settings['max_nodes']} is too small for "
-                     f"tolerance {settings['tolerance']:g}; raise [bvp] max_nodes")
-    if not continuation:
-        return sol, "cold start only"
-    model = prob.model
-    w_target = model.w.copy()
-    has_current = model.speed is not None
-    has_buoy = bool(np.any(w_target < 0))
-    if not (has_current or has_buoy):
-        return sol, "cold start (no continuation parameter)"
-
-    def set_lam(lam):
-        model.drag_factor = lam
-        model.w = np.where(w_target < 0, lam * w_target, w_target)
-
-    set_lam(0.0)
-    base = _run(prob, tau0, Y0, prob.guess_p, trial)
-    if not _good(base, prob):
-        set_lam(1.0)
-        return base, "continuation failed: no solution even without current and buoyancy"
-    lam, step, last = 0.0, 0.25, base
-    while lam < 1.0:
-        target = min(1.0, lam + step)
-        set_lam(target)
-        cand = _run(prob, tau0, last.sol(tau0), last.p if last.p is not None else prob.guess_p,
-                    trial)
-        if _good(cand, prob):
-            lam, last = target, cand
-            step = min(step * 1.5, 0.5)
-        else:
-            step /= 2.0
-            if step < 1.0 / 128:
-                set_lam(1.0)
-                Tmin = float(np.min(last.y[IT::NSTATE])) * model.scale[IT]
-                Tmax = float(np.max(last.y[IT::NSTATE])) * model.scale[IT]
-                why = (f"minimum tension there {Tmin / 1e3:.3g} kN of max {Tmax / 1e3:.3g} kN")
-                if Tmin < 0.05 * Tmax:
-                    why += (": the tension tends to zero, so probably no static equilibrium "
-                            "of this form exists at the full load")
-                return cand, (f"continuation in current/buoyancy stalled at load factor "
-                              f"{lam:.3f}, {why}")
-    set_lam(1.0)
-    if last.x.size >= trial["max_nodes"]:
-        last = _run(prob, last.x, last.y, last.p if last.p is not None else prob.guess_p,
-                    settings)
-    return last, "continuation in current and buoyancy"
-
-
-def _good(sol, prob: _Problem) -> bool:
-    if not sol.success or not np.all(np.isfinite(sol.y)):
-        return False
-    if prob.form in ("hang_off_angle", "fixed_seabed", "fixed_liftoff"):
-        l1 = sol.p[0] * prob.model.length_scale
-        if l1 <= 0.0 or (prob.form != "hang_off_angle" and l1 > prob.first_total * (1 + 1e-9)):
-            return False
-    return True
