@@ -30,7 +30,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -61,11 +61,9 @@ class _Problem:
     bc: object
     guess_p: np.ndarray
     form: str
-    seabed_start: float = 0.0          # x of the anchor (fixed forms)
     anchor_xy: tuple = (0.0, 0.0)
     first_total: float = 0.0           # full length of the first segment [m]
     guess: object = None               # callable(tau) -> scaled state (6n, m)
-    notes: list = field(default_factory=list)
 
 
 def model_of(scene: Scene) -> dict:
@@ -266,43 +264,28 @@ def _build_problem(scene: Scene, split: bool = True) -> _Problem:
                       wref * math.sqrt(EImax / Ts), Ts])
 
     sink = max(float(w[0]), 0.0) / k_seabed if k_seabed > 0.0 else 0.0
-    if form == "fixed_liftoff":
+    split_first = form == "fixed_liftoff"
+    if split_first:
         # stacked segment 0: the contact zone [0, s_L]; 1: the rest of the first segment
-        def dup(a):
-            return np.concatenate([a[:1], a])
-        Lz = np.concatenate([[grounded], Ls])
-        model = BeamModel(EI=dup(EI), EA=dup(EA), w=dup(w), c_n=dup(c_n), c_t=dup(c_t),
-                          lengths=np.concatenate([[grounded], [L[0] - grounded], L[1:]]),
-                          scale=scale, k_seabed=k_seabed, speed=speed, speed_gradient=grad,
-                          free_first_length=True, split_first=True, length_scale=length_scale)
+        EI, EA, w, c_n, c_t = (np.concatenate([a[:1], a]) for a in (EI, EA, w, c_n, c_t))
+        lengths = np.concatenate([[grounded], [L[0] - grounded], L[1:]])
+        Ls = np.concatenate([[0.0], Ls])        # the guess's catenary starts after the zone
         p0 = np.array([grounded / length_scale])
-        Lz[0] = 0.0
-
-        def guess(tau: np.ndarray) -> np.ndarray:
-            return guesses.state_guess(tau, dup(w), Lz, dup(EI), H, V0, ox, oy, scale,
-                                       grounded, sink)
-
-        return _Problem(model=model, bc=_boundary_conditions(form, scene, model, L),
-                        guess_p=p0, form=form, seabed_start=anchor[0], anchor_xy=anchor,
-                        first_total=float(L[0]), guess=guess)
-
-    model = BeamModel(EI=EI, EA=EA, w=w, c_n=c_n, c_t=c_t, lengths=L.copy() if free_first or
-                      form == "fixed_elastic" else Ls, scale=scale, k_seabed=k_seabed,
-                      speed=speed, speed_gradient=grad, free_first_length=free_first,
-                      length_scale=length_scale)
-    p0 = np.array([Ls[0] / length_scale]) if free_first else np.zeros(0)
-
-    if form == "fixed_elastic":
-        def guess(tau: np.ndarray) -> np.ndarray:
-            return guesses.state_guess(tau, w, Ls, EI, H, V0, ox, oy, scale, grounded, sink,
-                                       cat_EA)
     else:
-        def guess(tau: np.ndarray) -> np.ndarray:
-            return guesses.state_guess(tau, w, Ls, EI, H, V0, ox, oy, scale, EA=cat_EA)
+        lengths = L.copy() if free_first or form == "fixed_elastic" else Ls
+        p0 = np.array([Ls[0] / length_scale]) if free_first else np.zeros(0)
+    model = BeamModel(EI=EI, EA=EA, w=w, c_n=c_n, c_t=c_t, lengths=lengths, scale=scale,
+                      k_seabed=k_seabed, speed=speed, speed_gradient=grad,
+                      free_first_length=free_first or split_first, split_first=split_first,
+                      length_scale=length_scale)
+    # the line lying on the seabed ahead of the touchdown (elastic forms), sunk by w/k
+    zone = (grounded, sink) if form in ("fixed_elastic", "fixed_liftoff") else (0.0, 0.0)
+
+    def guess(tau: np.ndarray) -> np.ndarray:
+        return guesses.state_guess(tau, w, Ls, EI, H, V0, ox, oy, scale, *zone, EA=cat_EA)
 
     return _Problem(model=model, bc=_boundary_conditions(form, scene, model, L), guess_p=p0,
-                    form=form, seabed_start=anchor[0], anchor_xy=anchor,
-                    first_total=float(L[0]), guess=guess)
+                    form=form, anchor_xy=anchor, first_total=float(L[0]), guess=guess)
 
 
 def _boundary_conditions(form: str, scene: Scene, model: BeamModel, L: np.ndarray):
