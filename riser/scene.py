@@ -507,13 +507,17 @@ def _check_model(scene: Scene) -> None:
     if "seabed" in scene.model and not wang and scene.seabed is None:
         raise SceneError(src, "model.seabed", "needs a [seabed] table (with its stiffness)")
     if scene.axial_model == "extensible":
-        for name, lt in scene.line_types.items():
-            if lt.axial_stiffness is None:
-                why = ("the default for fixed ends" if "axial" not in scene.model
-                       else "[model] axial")
-                raise SceneError(src, f"line_types.{name}.axial_stiffness",
-                                 f"required for the extensible model ({why}): give it [N] or "
-                                 "youngs_modulus, or set [model] axial = \"inextensible\"")
+        why = "the default for fixed ends" if "axial" not in scene.model else "[model] axial"
+        require_axial_stiffness(scene, f"required for the extensible model ({why}): give it "
+                                "[N] or youngs_modulus, or set [model] axial = \"inextensible\"")
+
+
+def require_axial_stiffness(scene: Scene, message: str) -> None:
+    """Raise :class:`SceneError` naming the first line type without EA (``message`` says
+    why it is needed)."""
+    for name, lt in scene.line_types.items():
+        if lt.axial_stiffness is None:
+            raise SceneError(scene.source, f"line_types.{name}.axial_stiffness", message)
 
 
 def _read_vfife(t: Table) -> dict:

@@ -4,8 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 
-from .errors import SceneError
-from .scene import Ends, Scene, Seabed
+from .scene import Ends, Scene, Seabed, require_axial_stiffness
 
 #: Seabed stiffness [N/m2] (force per metre of line per metre of penetration) given to a
 #: touchdown-form scene without a [seabed] when it becomes a fixed-ends scene: a soft
@@ -31,11 +30,8 @@ def fixed_ends_scene(scene: Scene, hang_off_xy, seabed_length: float, *,
     equilibrium). The copy is the model both methods can solve: extensible on the elastic
     seabed ([model] keys dropped, the fixed-ends defaults), so every line type needs EA.
     """
-    for name, lt in scene.line_types.items():
-        if lt.axial_stiffness is None:
-            raise SceneError(scene.source, f"line_types.{name}.axial_stiffness",
-                             "required to convert the scene to fixed ends on an elastic "
-                             "seabed (the extensible model both methods solve)")
+    require_axial_stiffness(scene, "required to convert the scene to fixed ends on an elastic "
+                            "seabed (the extensible model both methods solve)")
     if seabed_length < 0.0:
         raise ValueError(f"seabed_length must be >= 0, got {seabed_length}")
     segs = list(scene.segments)
