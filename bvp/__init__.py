@@ -1,4 +1,5 @@
-"""Large-deformation inextensible beam boundary-value solver (Wang et al. 2014) on solve_bvp."""
+"""Large-deformation beam boundary-value solver (Wang et al. 2014; extensible, on an elastic
+seabed, with current drag) on scipy.integrate.solve_bvp."""
 
 from .solver import solve
 

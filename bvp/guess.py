@@ -62,7 +62,7 @@ def hang_off_angle(w, L, height, alpha):
         return Vtop / math.tan(alpha), Vtop
 
     def resid(l1):
-        H, Vtop = forces(l1)
+        H, _ = forces(l1)
         if H <= 0:
             return -height
         Ls = L.copy()

@@ -35,7 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from riser.errors import UnsupportedSceneError
-from riser.result import SolveResult
+from riser.result import SolveResult, Status
 from riser.scene import Scene
 from riser.sections import segment_properties
 
@@ -47,7 +47,6 @@ from .mesh import clustered_mesh
 from .output import build_profile, grounded_drag
 from .strategy import good, solve_with_continuation
 
-DEFAULTS = {"tolerance": 1.0e-6, "max_nodes": 30000, "initial_nodes": 400}
 #: strain T/EA above which a converged solution carries a warning: the linear axial model
 #: is a small-strain model (synthetic ropes stretch a few per cent, steel yields at ~0.2 %)
 STRAIN_WARNING = 0.01
@@ -64,14 +63,6 @@ class _Problem:
     anchor_xy: tuple = (0.0, 0.0)
     first_total: float = 0.0           # full length of the first segment [m]
     guess: object = None               # callable(tau) -> scaled state (6n, m)
-
-
-def model_of(scene: Scene) -> dict:
-    """The continuum model the BVP solves for ``scene`` (goes into summary.json)."""
-    out = {"axial": scene.axial_model, "seabed": scene.seabed_model}
-    if scene.seabed_model == "elastic":
-        out["seabed_stiffness"] = scene.seabed.stiffness
-    return out
 
 
 def effects_of(scene: Scene) -> list[str]:
@@ -91,43 +82,41 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
           initial_nodes: int | None = None, continuation: bool = True) -> SolveResult:
     """Solve the static configuration of ``scene`` (see module docstring for the ends).
 
-    Never raises on non-convergence: the result has ``converged=False`` and a message.
+    Never raises on non-convergence: the result has a :class:`~riser.result.Status` other
+    than converged and a message saying why.
     Raises :class:`UnsupportedSceneError` for scenes the method cannot represent
     (out-of-plane current).
     """
     t0 = time.perf_counter()
-    settings = {**DEFAULTS, **scene.bvp}
-    if tolerance is not None:
-        settings["tolerance"] = tolerance
-    if max_nodes is not None:
-        settings["max_nodes"] = max_nodes
-    if initial_nodes is not None:
-        settings["initial_nodes"] = initial_nodes
+    overrides = {"tolerance": tolerance, "max_nodes": max_nodes, "initial_nodes": initial_nodes}
+    settings = scene.bvp.replace(**{k: v for k, v in overrides.items() if v is not None})
     if scene.current is not None and not scene.current.is_planar:
         raise UnsupportedSceneError(
             f"{scene.source}: environment.current.heading_deg: {scene.current.heading_deg:g} deg "
             "is out of plane; the bvp method is planar only (use --method vfife)")
 
     effects = effects_of(scene)
-    info = {"tolerance": settings["tolerance"], "model": model_of(scene), "warnings": []}
+    info = {"tolerance": settings.tolerance}
+    warnings = []
     if scene.dynamics is not None:
-        info["warnings"].append("bvp solves statics only: [dynamics] ignored")
+        warnings.append("bvp solves statics only: [dynamics] ignored")
     if scene.seabed is not None and scene.seabed.friction > 0.0:
-        info["warnings"].append(f"bvp seabed is frictionless: seabed.friction = "
-                                f"{scene.seabed.friction:g} ignored")
+        warnings.append(f"bvp seabed is frictionless: seabed.friction = "
+                        f"{scene.seabed.friction:g} ignored")
 
-    def fail(msg: str) -> SolveResult:
-        return SolveResult("bvp", scene.name, False, msg, None, time.perf_counter() - t0,
-                           effects, info)
+    def result(status: Status, msg: str, profile=None) -> SolveResult:
+        return SolveResult("bvp", scene.name, status, msg, profile, time.perf_counter() - t0,
+                           effects, model=scene.continuum_model(), warnings=warnings,
+                           info=info)
 
-    tau0 = clustered_mesh(settings["initial_nodes"])
+    tau0 = clustered_mesh(settings.initial_nodes)
     split_tried = ""
     for split in (True, False):
         try:
             prob = _build_problem(scene, split)
         except BVPFailure as exc:
-            return fail(str(exc))
-        sol, how = solve_with_continuation(prob, tau0, settings, continuation)
+            return result(Status.NOT_CONVERGED, str(exc))
+        sol, how, failure = solve_with_continuation(prob, tau0, settings, continuation)
         if prob.form == "fixed_liftoff" and sol is not None and good(sol, prob):
             # the contact zone must be in contact (y <= 0 up to 1 % of the sink depth w/k),
             # else solve the unilateral law everywhere (a failure to converge is final: the
@@ -140,24 +129,24 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
     info["strategy"] = split_tried + how
     if sol is None or not good(sol, prob):
         msg = sol.message if sol is not None else "no solution"
-        return fail(f"solve_bvp did not converge ({msg}); tried: {split_tried}{how}"
-                    + _second_contact(prob, tau0))
+        return result(failure, f"solve_bvp did not converge ({msg}); tried: {split_tried}"
+                      f"{how}" + _second_contact(prob, tau0))
 
     info["nodes"] = int(sol.x.size)
     info["iterations"] = int(sol.niter)
-    info["residual"] = float(np.max(sol.rms_residuals))
+    # solve_bvp's measure: the largest rms collocation residual, relative to 1 + |f|
+    info["collocation_residual"] = float(np.max(sol.rms_residuals))
     try:
         profile, checks = build_profile(prob, sol, scene.water_depth)
     except BVPFailure as exc:
-        return fail(str(exc))
+        return result(Status.NOT_CONVERGED, str(exc))
     info.update(checks)
     if checks["max_strain"] > STRAIN_WARNING:
-        info["warnings"].append(
+        warnings.append(
             f"largest axial strain T/EA = {100 * checks['max_strain']:.3g} %: beyond the small "
             f"strains ({100 * STRAIN_WARNING:g} %) of a linear EA (a steel pipe yields at "
             "~0.2 %); check the line length and axial_stiffness")
-    return SolveResult("bvp", scene.name, True, f"converged ({how})", profile,
-                       time.perf_counter() - t0, effects, info)
+    return result(Status.CONVERGED, f"converged ({how})", profile)
 
 
 def _second_contact(prob: _Problem, tau: np.ndarray) -> str:

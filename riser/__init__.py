@@ -1,14 +1,18 @@
-"""Shared riser model: scene files, section properties and the result types of both solvers."""
+"""Shared riser model: scene files, solver settings, section properties and the result
+contract of every method (the only code the methods share)."""
 
-from .errors import SceneError, UnsupportedSceneError
+from .errors import SceneError, SolveFailed, UnsupportedSceneError
 from .profile import Profile, summarize
-from .result import SolveResult
-from .scene import (Current, Dynamics, Ends, LineType, Scene, Seabed, Segment, TopMotion,
-                    load_scene, parse_scene, scene_from_dict)
+from .result import DynamicsResult, SolveResult, Status
+from .scene import Current, Dynamics, Ends, LineType, Scene, Seabed, Segment, TopMotion
+from .scene_file import load_scene, parse_scene, scene_from_dict
 from .sections import SegmentProperties, segment_properties
+from .settings import BVPSettings, VFIFESettings
 
 __all__ = [
-    "SceneError", "UnsupportedSceneError", "Profile", "summarize", "SolveResult", "Current",
-    "Dynamics", "Ends", "LineType", "Scene", "Seabed", "Segment", "TopMotion", "load_scene",
-    "parse_scene", "scene_from_dict", "SegmentProperties", "segment_properties",
+    "SceneError", "SolveFailed", "UnsupportedSceneError", "Profile", "summarize",
+    "DynamicsResult", "SolveResult", "Status", "Current", "Dynamics", "Ends", "LineType",
+    "Scene", "Seabed", "Segment", "TopMotion", "load_scene", "parse_scene",
+    "scene_from_dict", "SegmentProperties", "segment_properties", "BVPSettings",
+    "VFIFESettings",
 ]

@@ -21,3 +21,14 @@ class SceneError(ValueError):
 
 class UnsupportedSceneError(ValueError):
     """A valid scene that a particular solver cannot handle (e.g. 3D current for the BVP)."""
+
+
+class SolveFailed(RuntimeError):
+    """A solve that a larger job depends on did not converge (e.g. the BVP a fixed-ends
+    conversion starts from, or one method of a comparison). ``method`` names the method
+    and ``status`` (a :class:`riser.result.Status`) says how it ended."""
+
+    def __init__(self, method: str, status, message: str):
+        self.method = method
+        self.status = status
+        super().__init__(message)

@@ -11,7 +11,7 @@ from __future__ import annotations
 import csv
 import json
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -36,7 +36,6 @@ class Profile:
     shear: np.ndarray
     curvature: np.ndarray
     tdp_s: float | None = None
-    meta: dict = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         for name in ("s", "x", "y", "z", "theta", "tension", "moment", "shear", "curvature"):
@@ -46,10 +45,6 @@ class Profile:
         return all(np.all(np.isfinite(getattr(self, n))) for n in
                    ("s", "x", "y", "z", "theta", "tension", "moment", "shear", "curvature"))
 
-    def at(self, s: np.ndarray, name: str) -> np.ndarray:
-        """Linear interpolation of column ``name`` at arc lengths ``s`` [m]."""
-        return np.interp(s, self.s, getattr(self, name))
-
     def write_csv(self, path: str | Path) -> None:
         with open(path, "w", newline="") as fh:
             w = csv.writer(fh)
@@ -58,14 +53,6 @@ class Profile:
                     self.curvature, np.degrees(self.theta)]
             for row in zip(*cols):
                 w.writerow([f"{v:.10g}" for v in row])
-
-
-def read_profile_csv(path: str | Path) -> Profile:
-    """Read a ``profile.csv`` written by :meth:`Profile.write_csv`."""
-    data = np.genfromtxt(path, delimiter=",", names=True)
-    return Profile(s=data["s"], x=data["x"], y=data["y"], z=data["z"],
-                   theta=np.radians(data["angle_deg"]), tension=data["tension"],
-                   moment=data["moment"], shear=data["shear"], curvature=data["curvature"])
 
 
 def _parabolic_peak(s: np.ndarray, v: np.ndarray, i: int) -> tuple[float, float]:

@@ -10,8 +10,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import numpy as np
-
 from .scene import Scene
 
 
@@ -21,30 +19,24 @@ class SegmentProperties:
 
     Attributes
     ----------
-    index : position in ``scene.segments`` (0 = bottom).
     s_start, s_end : arc length of the segment ends from the bottom end [m].
-    EA : axial stiffness [N]; EI : bending stiffness [N m2]; GJ : torsional stiffness [N m2].
+    EA : axial stiffness [N]; EI : bending stiffness [N m2].
     mass : structural + contents mass [kg/m] (no added mass).
     rotary_inertia : polar mass moment of inertia per length of the pipe wall [kg m].
     weight : submerged weight w [N/m], positive downwards (negative = buoyant).
-    hydro_diameter : diameter used for drag and added mass [m].
     drag_normal_coef : 0.5 rho D C_Dn [kg/m2]; normal drag force per length is
         drag_normal_coef * |u_n| u_n for the relative normal velocity u_n.
     drag_tangential_coef : 0.5 rho pi D C_Dt [kg/m2] (Wang et al. eq. (4): uses the perimeter).
     added_mass : C_a rho pi D^2 / 4 [kg/m], acting normal to the pipe axis.
     """
 
-    index: int
-    label: str
     s_start: float
     s_end: float
     EA: float
     EI: float
-    GJ: float
     mass: float
     rotary_inertia: float
     weight: float
-    hydro_diameter: float
     drag_normal_coef: float
     drag_tangential_coef: float
     added_mass: float
@@ -65,7 +57,7 @@ def segment_properties(scene: Scene) -> list[SegmentProperties]:
     rho = scene.water_density
     out: list[SegmentProperties] = []
     s0 = 0.0
-    for i, seg in enumerate(scene.segments):
+    for seg in scene.segments:
         lt = scene.line_types[seg.line_type]
         D, d = lt.outer_diameter, lt.inner_diameter
         contents = lt.contents_density * math.pi / 4.0 * d * d
@@ -79,18 +71,11 @@ def segment_properties(scene: Scene) -> list[SegmentProperties]:
         # polar moment of the wall per length: m_wall (D^2 + d^2) / 8
         rot = lt.mass_per_length * (D * D + d * d) / 8.0
         out.append(SegmentProperties(
-            index=i, label=seg.label or f"segment {i + 1}", s_start=s0, s_end=s0 + seg.length,
-            EA=lt.axial_stiffness, EI=lt.bending_stiffness, GJ=lt.torsional_stiffness,
-            mass=mass, rotary_inertia=rot, weight=w, hydro_diameter=Dh,
+            s_start=s0, s_end=s0 + seg.length, EA=lt.axial_stiffness,
+            EI=lt.bending_stiffness, mass=mass, rotary_inertia=rot, weight=w,
             drag_normal_coef=0.5 * rho * Dh * lt.drag_normal,
             drag_tangential_coef=0.5 * rho * math.pi * Dh * lt.drag_tangential,
             added_mass=lt.added_mass * rho * math.pi / 4.0 * Dh * Dh,
         ))
         s0 += seg.length
     return out
-
-
-def segment_index_at(props: list[SegmentProperties], s: np.ndarray) -> np.ndarray:
-    """Index of the segment containing arc length s [m] (joints belong to the upper one)."""
-    edges = np.array([p.s_start for p in props[1:]])
-    return np.searchsorted(edges, np.asarray(s), side="right")

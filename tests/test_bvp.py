@@ -12,7 +12,8 @@ from scipy.special import ellipe, ellipk
 
 import bvp
 from riser.errors import UnsupportedSceneError
-from riser.scene import Current, Ends, Seabed, parse_scene
+from riser.scene import Current, Ends, Seabed
+from riser.scene_file import parse_scene
 from verification.catalog import resolve
 
 ROD = """
@@ -110,10 +111,9 @@ def test_touchdown_shear_boundary_layer():
 
 
 @pytest.fixture(scope="module")
-def baseline():
-    res = bvp.solve(resolve("wang2014-baseline"))
-    assert res.converged, res.message
-    return res
+def baseline(wang_bvp):
+    # the session's BVP solution of the Wang baseline (conftest.py; read-only)
+    return wang_bvp
 
 
 def test_wang_baseline_table2(baseline):

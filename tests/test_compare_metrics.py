@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from riser.profile import Profile, summarize
-from verification.compare import agreement, curve_distance
+from verification.compare import agreement
+from verification.quantities import curve_distance
 from verification.tolerances import tolerance_value
 
 
@@ -117,11 +118,11 @@ def test_tolerances_within_the_issue_targets():
 
 
 def _comparison(rows, paper_rows=()):
-    from riser.result import SolveResult
+    from riser.result import SolveResult, Status
     from verification.catalog import resolve
     from verification.compare import Comparison
     sc = resolve("wang2014-baseline")
-    res = SolveResult("bvp", sc.name, True, "ok", _line(), info={"nodes": 10})
+    res = SolveResult("bvp", sc.name, Status.CONVERGED, "ok", _line(), info={"nodes": 10})
     return Comparison(sc, sc, 0.0, 100.0, res, res, list(rows), matched_scene=sc,
                       paper=res, paper_rows=list(paper_rows), notes=[])
 
@@ -192,7 +193,7 @@ def _two_peaks(a1: float, a2: float, s=None) -> Profile:
 
 
 def test_peak_location_ties_are_not_a_300_m_error():
-    from verification.compare import peak_location_distance
+    from verification.quantities import peak_location_distance
     # two peaks within 0.01 % of each other: which one is 'the' maximum is decided by
     # noise, so the location distance is that of the nearest near-maximum peaks (0 m)
     b, v = _two_peaks(1000.0, 999.9), _two_peaks(999.9, 1000.0)
@@ -213,7 +214,7 @@ def test_peak_location_tie_is_said_in_the_row():
 
 
 def test_peak_location_is_refined_between_stations():
-    from verification.compare import peak_location_offset
+    from verification.quantities import peak_location_offset
     # the peak at s = 100 m sampled every 1 m from s = 0.4 m: the nearest station is 0.4 m
     # off; the parabola through three stations of a Gaussian of width 10 m puts it within
     # O(h^2) of the vertex (~0.003 m measured; the 0.5 m location tolerance must not be

@@ -31,8 +31,13 @@ import pytest
 
 import bvp
 import vfife
-from riser.scene import scene_from_dict
+from riser.scene_file import scene_from_dict
 from verification import cost
+from verification.cost import assessment, fits, records, runner, settings
+from verification.cost.errors import rel_errors
+from verification.cost.touchdown import (asymptotic_length, boundary_layer_length,
+                                         foundation_length)
+from verification.quantities import raw_values
 
 LENGTHS = (20.0, 10.0, 5.0, 2.5)
 TOUCHDOWN_LENGTHS = (8.0, 4.0, 2.0, 1.0)
@@ -67,15 +72,15 @@ def hanging():
     sc = hanging_line()
     ref = bvp.solve(sc, tolerance=1e-9)
     assert ref.converged, ref.message
-    rv = cost.raw_values(ref.profile)
+    rv = raw_values(ref.profile)
     errors = {q: [] for q in ("hang_off_tension", "max_moment", "sag_height")}
     for h in LENGTHS:
         res = vfife.solve(sc, element_length=h, tolerance=1e-6)
         assert res.converged, res.message
-        e = cost.rel_errors(cost.raw_values(res.profile, ref.summary()), rv, 100.0)
+        e = rel_errors(raw_values(res.profile, ref.summary()), rv, 100.0)
         for q in errors:
             errors[q].append(e[q])
-    return cost.element_length_fits(LENGTHS, errors)
+    return fits.element_length_fits(LENGTHS, errors)
 
 
 @pytest.mark.parametrize("quantity", ["max_moment", "sag_height"])
@@ -102,15 +107,15 @@ def touchdown():
     """The cost study on ``touchdown_line`` with a handful of runs (~6 s): BVP at 1e-6 and
     1e-9 (the reference), the order sweep at the study's tight tolerances and its
     relaxation check at 2 m."""
-    S = cost.Setting
-    tight = {"max_steps": 50_000_000, "creep_tolerance": cost.TIGHT_CREEP}
+    S = settings.Setting
+    tight = {"max_steps": 50_000_000, "creep_tolerance": settings.TIGHT_CREEP}
     sets = [S("bvp", "tolerance", t, {"tolerance": t}) for t in (1e-6, 1e-9)]
     sets += [S("vfife", "element_length_tight", h,
-               {"element_length": h, "tolerance": cost.TIGHT_TOLERANCE}, tight)
+               {"element_length": h, "tolerance": settings.TIGHT_TOLERANCE}, tight)
              for h in TOUCHDOWN_LENGTHS]
     sets.append(S("vfife", "element_length_tight_check", 2.0,
-                  {"element_length": 2.0, "tolerance": cost.TIGHT_TOLERANCE / 10},
-                  {**tight, "creep_tolerance": cost.TIGHT_CREEP / 10}))
+                  {"element_length": 2.0, "tolerance": settings.TIGHT_TOLERANCE / 10},
+                  {**tight, "creep_tolerance": settings.TIGHT_CREEP / 10}))
     return cost.study(touchdown_line(), repeats=1, settings=sets, progress=False)
 
 
@@ -158,7 +163,7 @@ def test_touchdown_position_converges_inside_its_h2_envelope(touchdown):
     assert fit["points"] == list(TOUCHDOWN_LENGTHS)
     for h, e in zip(fit["points"], fit["errors"]):
         assert e <= 1.3 * lo["coef"] * h * h / st.depth, (h, e)
-    text = cost.order_assessment("tdp_x", fit, {"depth": st.depth, **lo})
+    text = assessment.order_assessment("tdp_x", fit, {"depth": st.depth, **lo})
     assert "linear interpolation" in text and "x that bound at 8, 4, 2, 1 m" in text
 
 
@@ -166,7 +171,7 @@ def test_study_writes_the_csv_contract(touchdown, tmp_path):
     import pandas as pd
     cost.write(touchdown, tmp_path)
     df = pd.read_csv(tmp_path / "runs.csv")
-    assert tuple(df.columns) == cost.RUN_COLUMNS + cost.EXTRA_COLUMNS
+    assert tuple(df.columns) == records.RUN_COLUMNS + records.EXTRA_COLUMNS
     assert tuple(df.columns[:12]) == (
         "method", "setting", "value", "wall_time_s", "compile_time_s", "err_hang_off_tension",
         "err_tdp_tension", "err_tdp_x", "err_max_moment", "err_crest_height",
@@ -182,7 +187,7 @@ def test_wang_form_scene_is_converted_for_both_methods():
     (measured in the full study: peak moment 2.8e-4, touchdown position 2.1e-3, curve
     distance 1.4e-5)."""
     from verification.catalog import resolve
-    S = cost.Setting
+    S = settings.Setting
     sets = [S("bvp", "tolerance", 1e-4, {"tolerance": 1e-4}),
             S("vfife", "element_length", 10.0, {"element_length": 10.0})]
     st = cost.study(resolve("wang2014-baseline"), repeats=1, settings=sets, progress=False)
@@ -201,34 +206,34 @@ def test_wang_form_scene_is_converted_for_both_methods():
 def test_richardson_recovers_a_known_limit():
     hs = [4.0, 2.0, 1.0, 0.5]
     qs = [3.0 + 0.7 * h ** 2 for h in hs]
-    lim, p = cost.richardson(hs, qs)
+    lim, p = fits.richardson(hs, qs)
     assert lim == pytest.approx(3.0, rel=1e-9)
     assert p == pytest.approx(2.0, abs=1e-6)
     # non-constant ratio, order 1.5
     hs = [20.0, 10.0, 5.0, 2.0, 1.0]
     qs = [1.0 - 0.1 * h ** 1.5 for h in hs]
-    lim, p = cost.richardson(hs, qs)
+    lim, p = fits.richardson(hs, qs)
     assert lim == pytest.approx(1.0, rel=1e-9) and p == pytest.approx(1.5, abs=1e-6)
     # non-monotone: no order, limit = finest value
-    assert cost.richardson([4.0, 2.0, 1.0], [1.0, 2.0, 1.5]) == (1.5, None)
+    assert fits.richardson([4.0, 2.0, 1.0], [1.0, 2.0, 1.5]) == (1.5, None)
 
 
 def test_fit_order_excludes_noise_and_pre_asymptotic_points():
     hs = [20.0, 10.0, 5.0, 2.0, 1.0]
     errs = [0.2, 1e-3, 2.5e-4, 4e-5, 1e-9]
-    f = cost.fit_order(hs, errs, floor=1e-8)
+    f = fits.fit_order(hs, errs, floor=1e-8)
     assert f["points"] == [10.0, 5.0, 2.0]
     assert f["order"] == pytest.approx(2.0, abs=0.01)
 
 
 def test_pareto_front():
     pts = [(1.0, 1e-2), (2.0, 1e-3), (3.0, 5e-3), (0.5, 1e-1), (4.0, 1e-4)]
-    assert cost.pareto(pts) == [(0.5, 1e-1), (1.0, 1e-2), (2.0, 1e-3), (4.0, 1e-4)]
+    assert fits.pareto(pts) == [(0.5, 1e-1), (1.0, 1e-2), (2.0, 1e-3), (4.0, 1e-4)]
 
 
 def test_progress_reports_done_total_elapsed_remaining():
     buf = io.StringIO()
-    p = cost.Progress(4, "x", stream=buf)
+    p = runner.Progress(4, "x", stream=buf)
     p.step("a")
     p.step("b")
     line = buf.getvalue().splitlines()[-1]
@@ -251,16 +256,16 @@ def test_asymptotic_length_of_the_converted_wang_baseline():
     and the stretch move it by 8e-4, 4e-4 in the root, hence rel=1e-3) and the seabed
     stiffness 1e5 N/m2. The asymptotic range ends at the shorter, the foundation length."""
     from verification.catalog import resolve
-    from verification.equivalence import fixed_ends_via_bvp
-    vf, _ = fixed_ends_via_bvp(resolve("wang2014-baseline"))
+    from verification.pipeline import vfife_equivalent
+    vf = vfife_equivalent(resolve("wang2014-baseline")).scene
     ref = bvp.solve(vf).profile
     do, t = 0.2032, 0.0191
     ei = 2.06e11 * math.pi / 64.0 * (do ** 4 - (do - 2 * t) ** 4)
-    assert cost.boundary_layer_length(vf, ref) == pytest.approx(math.sqrt(ei / 160000.0),
-                                                                 rel=1e-3)
+    assert boundary_layer_length(vf, ref) == pytest.approx(math.sqrt(ei / 160000.0),
+                                                            rel=1e-3)
     lf = (4.0 * ei / 1e5) ** 0.25
-    assert cost.foundation_length(vf, ref) == pytest.approx(lf, rel=1e-9)
-    assert cost.asymptotic_length(vf, ref) == pytest.approx(lf, rel=1e-9)
+    assert foundation_length(vf, ref) == pytest.approx(lf, rel=1e-9)
+    assert asymptotic_length(vf, ref) == pytest.approx(lf, rel=1e-9)
 
 
 def test_order_sweep_has_three_lengths_in_the_asymptotic_range():
@@ -271,50 +276,51 @@ def test_order_sweep_has_three_lengths_in_the_asymptotic_range():
     sc = resolve("yu2021-a3")
 
     def tight(asym):
-        return [s.value for s in cost.default_settings(sc, asymptotic=asym)
+        return [s.value for s in settings.default_settings(sc, asymptotic=asym)
                 if s.setting == "element_length_tight"]
-    assert tight(27.0) == list(cost.ORDER_LENGTHS)
-    assert tight(4.2) == list(cost.ORDER_LENGTHS)            # 4, 3, 2, 1.5, 1 in the fit
-    assert tight(1.2) == [*cost.ORDER_LENGTHS, 0.5]          # 1 and 0.5: all there is
-    check = [s for s in cost.default_settings(sc) if s.setting == "element_length_tight_check"]
+    assert tight(27.0) == list(settings.ORDER_LENGTHS)
+    assert tight(4.2) == list(settings.ORDER_LENGTHS)        # 4, 3, 2, 1.5, 1 in the fit
+    assert tight(1.2) == [*settings.ORDER_LENGTHS, 0.5]      # 1 and 0.5: all there is
+    check = [s for s in settings.default_settings(sc)
+             if s.setting == "element_length_tight_check"]
     assert len(check) == 1
-    assert check[0].solve_kwargs["tolerance"] == pytest.approx(cost.TIGHT_TOLERANCE / 10)
-    assert check[0].vfife_changes["creep_tolerance"] == pytest.approx(cost.TIGHT_CREEP / 10)
+    assert check[0].solve_kwargs["tolerance"] == pytest.approx(settings.TIGHT_TOLERANCE / 10)
+    assert check[0].vfife_changes["creep_tolerance"] == pytest.approx(settings.TIGHT_CREEP / 10)
 
 
 def test_order_assessment_explains_departures():
     ok = {"order": 2.1, "points": [5.0, 2.0, 1.0], "r2": 0.99}
-    assert "as expected" in cost.order_assessment("max_moment", ok)
+    assert "as expected" in assessment.order_assessment("max_moment", ok)
     two = {"order": 2.1, "points": [5.0, 2.0], "r2": 1.0}
-    assert "two points only" in cost.order_assessment("max_moment", two)
+    assert "two points only" in assessment.order_assessment("max_moment", two)
     low = {"order": 0.7, "points": [4.0, 2.0, 1.0], "r2": 0.95, "errors": [4e-4, 1e-4, 3e-5]}
     ctx = {"theta0": 0.0042, "kappa0": 1.4e-3, "coef": 1.4e-3 / (8 * 0.0042),
            "depth": 1586.3, "stiffness": 1e5}
-    text = cost.order_assessment("tdp_x", low, ctx)
+    text = assessment.order_assessment("tdp_x", low, ctx)
     assert text.startswith("differs (order 0.70, R^2 0.95): the lift-off is read off the "
                            "nodal polyline")
     assert "0.0417 h^2 m" in text and "0.95, 0.95, 1.14 x that bound at 4, 2, 1 m" in text
-    assert "the seabed reaction is lumped at the nodes" in cost.order_assessment(
+    assert "the seabed reaction is lumped at the nodes" in assessment.order_assessment(
         "hang_off_tension", low, ctx)
     # a sign change of the error is pointed out with the signed errors
     low["signed"] = [4e-4, -1e-4, 3e-5]
     assert "changes sign (4-2 m, 2-1 m; signed errors +4.0e-04, -1.0e-04, +3.0e-05" in \
-        cost.order_assessment("max_moment", low)
+        assessment.order_assessment("max_moment", low)
     # a single sag whose worst mesh is the touchdown's worst (yu2021-a2-sheared, measured)
     sag = {"order": 1.55, "r2": 0.13, "points": [4.0, 3.0, 2.0, 1.5, 1.0],
            "errors": [7.9e-7, 7.6e-6, 1.3e-8, 8.4e-7, 2.2e-7]}
     tdp = {"points": sag["points"], "errors": [2.7e-5, 1.3e-3, 1.6e-4, 1.7e-4, 3.8e-5]}
-    assert cost.worst_mesh(tdp) == 3.0 and cost.worst_mesh(sag) == 3.0
-    assert cost.worst_mesh({"points": [4.0, 2.0, 1.0], "errors": [1.6e-3, 4e-4, 1e-4]}) is None
-    text = cost.order_assessment("sag_height", sag, {"n_sag_height": 1,
-                                                     "touchdown_worst_mesh": 3.0})
+    assert fits.worst_mesh(tdp) == 3.0 and fits.worst_mesh(sag) == 3.0
+    assert fits.worst_mesh({"points": [4.0, 2.0, 1.0], "errors": [1.6e-3, 4e-4, 1e-4]}) is None
+    text = assessment.order_assessment("sag_height", sag, {"n_sag_height": 1,
+                                                           "touchdown_worst_mesh": 3.0})
     assert text.startswith("differs (order 1.55, R^2 0.13): a single sag bend")
     assert "on the 3 m mesh, as the touchdown tension's" in text
     # on order on average, but the points scatter about the line
     loose = {"order": 2.0, "points": [4.0, 2.0, 1.0], "r2": 0.6}
-    assert cost.order_assessment("max_moment", loose).startswith(
+    assert assessment.order_assessment("max_moment", loose).startswith(
         "order 2 on average, but the errors scatter about the fitted line (R^2 0.60)")
-    assert cost.order_assessment("sag_height", {"order": None, "points": []}).startswith(
+    assert assessment.order_assessment("sag_height", {"order": None, "points": []}).startswith(
         "not fitted")
 
 
@@ -323,7 +329,7 @@ def test_order_assessment_flags_scattered_local_orders():
     order."""
     fit = {"order": 1.92, "points": [20.0, 10.0, 5.0, 2.0], "r2": 0.93,
            "local": [(20.0, 10.0, 1.24), (10.0, 5.0, 1.16), (5.0, 2.0, 3.10)]}
-    text = cost.order_assessment("sag_height", fit)
+    text = assessment.order_assessment("sag_height", fit)
     assert text.startswith("order 2 on average, but the local orders in the fit scatter")
     fit["local"] = [(20.0, 10.0, 1.93), (10.0, 5.0, 1.97), (5.0, 2.0, 1.86)]
-    assert cost.order_assessment("sag_height", fit) == "order 2, as expected"
+    assert assessment.order_assessment("sag_height", fit) == "order 2, as expected"

@@ -27,10 +27,10 @@ from scipy.optimize import brentq, fsolve
 import bvp
 import vfife
 from riser.errors import SceneError
-from riser.scene import Seabed, parse_scene
-from verification.catalog import resolve
+from riser.scene import Seabed
+from riser.scene_file import parse_scene
 from verification.cli import main as cli_main
-from verification.equivalence import fixed_ends_from_bvp
+from verification.pipeline import vfife_equivalent
 
 RHO, G, D = 1025.0, 9.81, 0.01          # water density, gravity, rod diameter of ROD
 
@@ -96,13 +96,12 @@ def elastic_catenary(w, EA, L, dx, dy):
 
 # ============================================================ 1. limits of the model
 @pytest.fixture(scope="module")
-def wang():
+def wang(wang_scene, wang_bvp):
     """The Wang baseline (tdp_tension form: inextensible, rigid seabed) and its fixed-ends
     equivalent (hang-off at the BVP top point, anchor 300 m ahead on the seabed)."""
-    sc = resolve("wang2014-baseline")
-    ref = bvp.solve(sc)
+    sc, ref = wang_scene, wang_bvp          # session fixtures (conftest.py; read-only)
     assert ref.converged, ref.message
-    return sc, ref, fixed_ends_from_bvp(sc, ref)
+    return sc, ref, vfife_equivalent(sc, paper=ref).scene
 
 
 def _scaled_EA(scene, factor):
@@ -126,7 +125,7 @@ def test_inextensible_limit_error_is_one_over_EA(wang):
     for f in (1.0, 10.0, 100.0):
         res = bvp.solve(_scaled_EA(fixed, f).replace(model={"seabed": "rigid"}))
         assert res.converged, res.message
-        assert res.info["model"] == {"axial": "extensible", "seabed": "rigid"}
+        assert res.model == {"axial": "extensible", "seabed": "rigid"}
         s2 = res.summary()
         dT.append(s2["hang_off_tension"] - sm["hang_off_tension"])
         dx.append(s2["tdp_x"] - sm["tdp_x"])
@@ -157,7 +156,7 @@ def test_rigid_seabed_limit_touchdown_shift_is_foundation_length(wang):
     for k in ks:
         res = bvp.solve(fixed.replace(seabed=Seabed(float(k)), model={"axial": "inextensible"}))
         assert res.converged, res.message
-        assert res.info["model"]["seabed"] == "elastic"
+        assert res.model["seabed"] == "elastic"
         shift.append(res.summary()["tdp_x"] - ref.summary()["tdp_x"])
     shift = np.array(shift)
     lam = (4.0 * EI / ks) ** 0.25
@@ -200,7 +199,7 @@ def test_winkler_anchor_matches_hetenyi():
              k=k)
     res = bvp.solve(sc)
     assert res.converged, res.message
-    assert res.info["model"] == {"axial": "extensible", "seabed": "elastic",
+    assert res.model == {"axial": "extensible", "seabed": "elastic",
                                  "seabed_stiffness": k}
     p = res.profile
     w = submerged_weight(mass)
@@ -457,7 +456,7 @@ def test_bad_input_exit_code_of_the_process(tmp_path):
         "error: bad.toml: seabed.stiffness: must be a finite number, got nan"]
 
 
-def test_wang_form_extensible_top_moves_by_the_integrated_strain():
+def test_wang_form_extensible_top_moves_by_the_integrated_strain(wang_scene, wang_bvp):
     """Every end form gains the stretch: the touchdown-tension form of the Wang baseline,
     extensible, puts its free top where the inextensible line's top is plus the integrated
     strain, dr = int (T / EA) (cos theta, sin theta) ds along the inextensible solution
@@ -467,9 +466,7 @@ def test_wang_form_extensible_top_moves_by_the_integrated_strain():
     would be off by 100 %."""
     from scipy.integrate import trapezoid
 
-    from verification.catalog import resolve
-    sc = resolve("wang2014-baseline")
-    ref = bvp.solve(sc)
+    sc, ref = wang_scene, wang_bvp          # session fixtures (conftest.py; read-only)
     ext = bvp.solve(sc.replace(model={"axial": "extensible"}))
     assert ref.converged and ext.converged
     assert "axial" in ext.effects and "axial" not in ref.effects

@@ -8,7 +8,7 @@ import math
 import pytest
 
 import bvp
-from riser.scene import load_scene
+from riser.scene_file import load_scene
 from verification import stress
 
 FAST = [
@@ -21,7 +21,14 @@ FAST = [
 ]
 
 
-@pytest.mark.parametrize("name,method,expected", FAST, ids=[f"{n}-{m}" for n, m, _ in FAST])
+# hard-flexible-bvp is slow (6 s): test_bvp.py::test_catenary_limit_touchdown_form covers a
+# BVP bending layer far below 1 m (1 cm on 1000 m), in under 1 s
+SLOW = {("hard-flexible", "bvp")}
+CASES = [pytest.param(n, m, e, id=f"{n}-{m}", marks=[pytest.mark.slow] if (n, m) in SLOW else [])
+         for n, m, e in FAST]
+
+
+@pytest.mark.parametrize("name,method,expected", CASES)
 def test_hard_case_outcome(name, method, expected):
     row, res = stress.run_one(name, method)
     assert row["outcome"] == expected, row["message"]
@@ -55,4 +62,4 @@ def test_taut_steel_line_is_solved_with_a_strain_warning(tmp_path):
     chord = math.hypot(1400.0, 3000.0)
     # weight adds w L sin / (2 EA) ~ 0.3 % of the strain on average: 2 % of it covers it
     assert res.info["max_strain"] == pytest.approx(chord / 3000.0 - 1.0, rel=2e-2)
-    assert any("axial strain" in w for w in res.info["warnings"])
+    assert any("axial strain" in w for w in res.warnings)

@@ -5,7 +5,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from riser.errors import SceneError
-from riser.scene import Scene, load_scene
+from riser.scene import Scene
+from riser.scene_file import load_scene
 
 SCENE_DIR = Path(__file__).parent / "scenes"
 

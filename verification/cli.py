@@ -1,25 +1,30 @@
-"""Command line: ``riser-verify <command>``.
+"""Command line: ``riser-verify <command>``. Nothing imports this module.
 
-Exit codes: 0 success; 1 a solver did not converge (its message is printed); 2 bad input
-(a scene error naming the file and key, or a scene the method cannot represent).
+Exit codes: 0 success; 1 a solver did not converge, a comparison failed, or an unexpected
+error (one line each, the reason printed); 2 bad input (a scene error naming the file and
+key, or a scene the method cannot represent, refused before solving).
 """
 
 from __future__ import annotations
 
 import argparse
+import concurrent.futures as cf
+import json
+import multiprocessing as mp
 import os
 import sys
 import time
 from pathlib import Path
 
-from riser.errors import SceneError, UnsupportedSceneError
+from bvp.bench import run_bench as bvp_bench
+from riser.errors import SceneError, SolveFailed, UnsupportedSceneError
+from vfife.bench import format_table, run_bench
 
-METHODS = ("bvp", "vfife")
-STUDIES = ("wang2014", "yu2021", "compare", "stress", "cost")
-# scenes with a cross-method comparison report in reports/compare/ (reproduce compare|all)
-COMPARE_SCENES = ("wang2014-baseline", "wang2014-current-neg1p5", "wang2014-current-neg0p75",
-                  "wang2014-current-0p75", "wang2014-current-1p5", "scr-steel",
-                  "yu2021-a1", "yu2021-a2", "yu2021-a2-sheared", "yu2021-a3", "yu2021-a4")
+from . import compare, compare_report, cost, regress, stress, wang2014
+from .catalog import list_builtin, resolve
+from .index import write_index
+from .pipeline import METHODS, solve_scene
+from .studies import STUDIES, run_unit, units
 
 
 def _err(msg: str) -> None:
@@ -27,7 +32,6 @@ def _err(msg: str) -> None:
 
 
 def cmd_scenes(args) -> int:
-    from .catalog import list_builtin
     items = list_builtin()
     width = max(len(n) for n, _ in items)
     for name, title in items:
@@ -35,52 +39,16 @@ def cmd_scenes(args) -> int:
     return 0
 
 
-def solve_scene(scene, method: str, **options):
-    """Solve ``scene`` with ``method``. A VFIFE run of a scene in a Wang form (touchdown
-    tension, or hang-off height and angle) solves its fixed-ends equivalent: the hang-off at
-    the BVP's top point and line added on an elastic seabed ahead of the touchdown (stated
-    in the result's info); its arc lengths are reported in the scene's own coordinate,
-    from the BVP touchdown (the added line has s < 0)."""
-    if method == "bvp":
-        import bvp
-        return bvp.solve(scene, **{k: v for k, v in options.items() if k in ("tolerance",)})
-    import dataclasses
-
-    import vfife
-    opts = {k: v for k, v in options.items() if k in ("element_length",)}
-    if scene.ends.kind != "fixed":
-        from vfife.ends import require_vfife_model
-
-        from .equivalence import DEFAULT_SEABED_LENGTH, fixed_ends_via_bvp
-        require_vfife_model(scene)
-        fixed, note = fixed_ends_via_bvp(scene)
-        res = vfife.solve(fixed, **opts)
-        res.info["ends_conversion"] = (f"{note}; arc lengths s are measured from the BVP "
-                                       f"touchdown (the added line has s < 0)")
-        res.scene = scene.name
-        if res.profile is not None:
-            p = res.profile
-            res.profile = dataclasses.replace(
-                p, s=p.s - DEFAULT_SEABED_LENGTH,
-                tdp_s=None if p.tdp_s is None else p.tdp_s - DEFAULT_SEABED_LENGTH)
-        return res
-    return vfife.solve(scene, **opts)
-
-
 def cmd_solve(args) -> int:
-    from .catalog import resolve
     scene = resolve(args.scene)
-    options = {}
-    if args.tolerance is not None:
-        options["tolerance"] = args.tolerance
-    if args.element_length is not None:
-        options["element_length"] = args.element_length
-    res = solve_scene(scene, args.method, **options)
+    res = solve_scene(scene, args.method, tolerance=args.tolerance,
+                      element_length=args.element_length)
     out = Path(args.out) if args.out else Path("out") / scene.name / args.method
     res.write(out)
     if not res.converged:
-        _err(f"{args.method} did not converge on {scene.name}: {res.message}")
-        return 1
+        _err(f"{args.method} on {scene.name}: {res.status.value} ({res.status.meaning}): "
+             f"{res.message}")
+        return res.status.exit_code
     sm = res.summary()
     print(f"{scene.name} [{args.method}]: {res.message} in {res.wall_time_s:.3f} s")
     print(f"  hang-off tension {sm['hang_off_tension'] / 1e3:.2f} kN, angle "
@@ -90,68 +58,10 @@ def cmd_solve(args) -> int:
         print(f"  touchdown x = {sm['tdp_x']:.2f} m, tension {sm['tdp_tension'] / 1e3:.2f} kN")
     print(f"  max tension {sm['max_tension'] / 1e3:.2f} kN, max moment "
           f"{sm['max_moment'] / 1e3:.3f} kN m at s = {sm['max_moment_s']:.1f} m")
-    for w in sm.get("warnings", []) or []:
+    for w in res.warnings:
         print(f"  warning: {w}")
     print(f"  wrote {out}/profile.csv and summary.json")
     return 0
-
-
-# the units of work of ``reproduce``, longest first (measured wall times [s] of
-# ``reproduce all`` in 2 processes on this 2-core machine): ``reproduce all --jobs N``
-# hands them to N worker processes (longest-processing-time-first), each unit writing its
-# own report directory
-UNIT_SECONDS = {("cost", "yu2021-a2-sheared"): 294, ("cost", "wang2014-baseline"): 263,
-                ("cost", "yu2021-a3"): 244, ("stress", None): 250, ("wang2014", None): 120,
-                ("yu2021", None): 90}
-
-
-def reproduce_units(name: str) -> list[tuple[str, str | None]]:
-    """(study, scene or None) units of ``reproduce NAME``; 'all' is every study."""
-    from .cost import COST_SCENES
-    units = []
-    for study_name in (STUDIES if name == "all" else (name,)):
-        if study_name == "compare":
-            units += [("compare", s) for s in COMPARE_SCENES]
-        elif study_name == "cost":
-            units += [("cost", s) for s in COST_SCENES]
-        else:
-            units.append((study_name, None))
-    return sorted(units, key=lambda u: -UNIT_SECONDS.get(u, 15))
-
-
-def run_unit(study_name: str, scene_name: str | None, out: str, note: str = "") -> str:
-    """Run one unit of ``reproduce`` into ``out`` (the study's directory); returns a line
-    for the log. Top level so that worker processes can run it."""
-    t0 = time.perf_counter()
-    out_dir = Path(out)
-    if study_name == "wang2014":
-        from . import wang2014
-        wang2014.run(out_dir)
-    elif study_name == "yu2021":
-        from . import yu2021
-        yu2021.run(out_dir)
-    elif study_name == "compare":
-        from . import compare, compare_report
-        from .catalog import resolve
-        try:
-            comp = compare.compare(resolve(scene_name))
-        except RuntimeError as exc:
-            return f"compare {scene_name}: {exc}"
-        compare_report.write(comp, out_dir / scene_name)
-        return (f"compare {scene_name}: {'PASS' if comp.passed else 'FAIL'} "
-                f"({time.perf_counter() - t0:.1f} s)")
-    elif study_name == "stress":
-        from . import stress
-        stress.run(out_dir)
-    elif study_name == "cost":
-        from . import cost
-        from .catalog import resolve
-        st = cost.study(resolve(scene_name))
-        if note:
-            st.notes.append(note)
-        cost.write(st, out_dir / scene_name)
-        return f"cost {scene_name}: wrote {out_dir / scene_name}/ in {st.elapsed_s:.0f} s"
-    return f"{study_name}: wrote {out_dir}/ in {time.perf_counter() - t0:.1f} s"
 
 
 def cmd_reproduce(args) -> int:
@@ -162,26 +72,23 @@ def cmd_reproduce(args) -> int:
             return str(Path("reports") / study_name)
         return str(base / study_name if args.name == "all" else base)
 
-    units = reproduce_units(args.name)
-    jobs = max(1, min(args.jobs, len(units)))
+    todo = units(args.name)
+    jobs = max(1, min(args.jobs, len(todo)))
     t0 = time.perf_counter()
     note = (f"Timings measured while `riser-verify reproduce {args.name}` ran other units in "
             f"{jobs - 1} more worker process(es) on this {os.cpu_count()}-core machine; run "
             "`riser-verify cost SCENE` alone for uncontended timings." if jobs > 1 else "")
     if jobs == 1:
-        for u in units:
+        for u in todo:
             print(run_unit(*u, out_of(u[0]), note), flush=True)
     else:
-        import concurrent.futures as cf
-        import multiprocessing as mp
         with cf.ProcessPoolExecutor(max_workers=jobs,
                                     mp_context=mp.get_context("spawn")) as pool:
-            futures = [pool.submit(run_unit, *u, out_of(u[0]), note) for u in units]
+            futures = [pool.submit(run_unit, *u, out_of(u[0]), note) for u in todo]
             for f in cf.as_completed(futures):
                 print(f.result(), flush=True)
-    print(f"reproduce {args.name}: {len(units)} unit(s) in {time.perf_counter() - t0:.0f} s "
+    print(f"reproduce {args.name}: {len(todo)} unit(s) in {time.perf_counter() - t0:.0f} s "
           f"with {jobs} process(es)")
-    from .index import write_index
     if base is None:
         print(f"index: {write_index(Path('reports'))}")
     elif args.name == "all":
@@ -190,8 +97,6 @@ def cmd_reproduce(args) -> int:
 
 
 def cmd_compare(args) -> int:
-    from . import compare, compare_report
-    from .catalog import resolve
     scene = resolve(args.scene)
     comp = compare.compare(scene, element_length=args.element_length,
                            paper_model=not args.no_paper_model)
@@ -206,7 +111,6 @@ def cmd_compare(args) -> int:
 
 
 def cmd_regress(args) -> int:
-    from . import regress
     problems = regress.run(update=args.update, names=args.scenes or None)
     for line in problems:
         print(line)
@@ -217,7 +121,6 @@ def cmd_regress(args) -> int:
 
 
 def cmd_stress(args) -> int:
-    from . import stress
     out = Path(args.out) if args.out else Path("reports") / "stress"
     df = stress.run(out, names=args.scenes or None)
     silent = df[df.outcome == "SILENT FAILURE"]
@@ -226,16 +129,10 @@ def cmd_stress(args) -> int:
 
 
 def cmd_bench(args) -> int:
-    import json
-
-    from bvp.bench import run_bench as bvp_bench
-    from vfife.bench import format_table, run_bench
-
-    from .catalog import resolve
-    from .wang2014 import SCENES
     out = Path(args.out) if args.out else Path("reports") / "bench"
-    bench = run_bench(out)
-    bench["bvp"] = bvp_bench(resolve(SCENES[0.0]), [resolve(n) for v, n in SCENES.items() if v])
+    bench = run_bench(out, wang2014.bench_scene())
+    scenes = wang2014.SCENES
+    bench["bvp"] = bvp_bench(resolve(scenes[0.0]), [resolve(n) for v, n in scenes.items() if v])
     (out / "bench.json").write_text(json.dumps(bench, indent=2) + "\n")
     print(format_table(bench))
     b = bench["bvp"]
@@ -247,8 +144,6 @@ def cmd_bench(args) -> int:
 
 
 def cmd_cost(args) -> int:
-    from . import cost
-    from .catalog import resolve
     scene = resolve(args.scene)
     out = Path(args.out) if args.out else Path("reports") / "cost" / scene.name
     st = cost.study(scene, repeats=args.repeats, quick=args.quick)
@@ -272,7 +167,7 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--element-length", type=float, help="vfife: element length [m]")
     s.set_defaults(func=cmd_solve)
     s = sub.add_parser("reproduce", help="regenerate a paper reproduction report")
-    s.add_argument("name", choices=STUDIES + ("all",))
+    s.add_argument("name", choices=(*STUDIES, "all"))
     s.add_argument("--jobs", type=int, default=min(2, os.cpu_count() or 1),
                    help="worker processes (default: min(2, cores)); 1 runs serially")
     s.add_argument("--out", help="output directory (default reports/NAME)")
@@ -314,9 +209,15 @@ def main(argv: list[str] | None = None) -> int:
     except (SceneError, UnsupportedSceneError) as exc:
         _err(str(exc))
         return 2
+    except SolveFailed as exc:
+        _err(f"{exc} ({exc.status.value})")
+        return 1
     except KeyboardInterrupt:
         _err("interrupted")
         return 130
+    except Exception as exc:       # noqa: BLE001 - one line, never a traceback
+        _err(f"unexpected {type(exc).__name__}: {exc} (please report it with the command)")
+        return 1
 
 
 if __name__ == "__main__":

@@ -6,7 +6,7 @@ stiffness. A fixed-ends scene is solved as it is by both. A scene in a Wang form
 (touchdown tension, or hang-off height and angle) is solved once by the BVP in its paper
 model (inextensible on a rigid seabed), converted once to fixed ends (hang-off at that
 BVP's top point, anchor on the seabed with extra line ahead of the touchdown,
-:func:`verification.equivalence.fixed_ends_from_bvp`), and both methods solve the
+:func:`verification.pipeline.vfife_equivalent`), and both methods solve the
 converted scene. The verdict is that matched comparison alone.
 
 The profiles are compared at the same arc length over the range both cover, at the VFIFE
@@ -25,7 +25,7 @@ a continuous solution are kept out of the metrics, each measured (issue 11):
   has a kink (a jump of the submerged weight at a segment joint) that mean is off by
   |dw| h / 4: 0.17-0.20 % of T_max on the Yu risers (1130 N/m of buoyancy) at 1 m,
   halving at 0.5 m. The BVP tension is therefore put through the same operator
-  (:func:`nodal_average`): sampled at the VFIFE element midpoints and averaged to the
+  (:func:`verification.quantities.nodal_average`): sampled at the VFIFE element midpoints and averaged to the
   nodes. What remains is the discretisation error (0.02 % on Yu A1, 0.004 % on Wang).
 
 A secondary section compares the same VFIFE run with the BVP's paper model (the limit
@@ -37,18 +37,21 @@ the soft seabed; it is not part of the verdict.
 
 from __future__ import annotations
 
-import dataclasses
 import time
 from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
-from scipy.spatial import cKDTree
 
-from riser.profile import Profile, _parabolic_peak, summarize
+import bvp
+import vfife
+from riser.errors import SolveFailed
+from riser.profile import Profile, summarize
 from riser.scene import Scene
 
-from .equivalence import DEFAULT_SEABED_LENGTH, fixed_ends_from_bvp
+from .pipeline import shifted, vfife_equivalent
+from .quantities import (curve_distance, match_feature, nodal_average,
+                         peak_location_offset, reference_depth, signed_moment)
 from .tolerances import tolerance, tolerance_value, unit
 
 AGREEMENT_COLUMNS = ("quantity", "bvp", "vfife", "abs_diff", "rel_diff", "tolerance", "pass")
@@ -62,35 +65,6 @@ ROUND_OFF = 1.0e-9
 PAPER_MODEL = {"axial": "inextensible", "seabed": "rigid"}
 
 
-def reference_depth(scene: Scene, bvp_summary: dict) -> float:
-    """Length that normalises configuration differences [m]: the water depth, else the
-    hang-off height above the seabed."""
-    return float(scene.water_depth) if scene.water_depth else float(bvp_summary["hang_off_height"])
-
-
-def curve_distance(ref: Profile, other: Profile, s_range: tuple[float, float],
-                   s_shift: float = 0.0) -> tuple[float, float, float]:
-    """(max, rms, s at max) of the distance from each ``other`` station in ``s_range`` to
-    the polyline of ``ref`` [m] (point to curve, projected on the nearest two segments)."""
-    P = np.stack([ref.x, ref.y, ref.z], axis=1)
-    so = other.s - s_shift
-    sel = (so >= s_range[0] - 1e-9) & (so <= s_range[1] + 1e-9)
-    Q = np.stack([other.x[sel], other.y[sel], other.z[sel]], axis=1)
-    tree = cKDTree(P)
-    _, idx = tree.query(Q)
-    best = np.full(len(Q), np.inf)
-    for off in (-1, 0):
-        i0 = np.clip(idx + off, 0, len(P) - 2)
-        a, b = P[i0], P[i0 + 1]
-        ab = b - a
-        t = np.clip(np.einsum("ij,ij->i", Q - a, ab) / np.maximum(np.einsum("ij,ij->i", ab, ab),
-                                                                  1e-300), 0.0, 1.0)
-        d = np.linalg.norm(Q - (a + t[:, None] * ab), axis=1)
-        best = np.minimum(best, d)
-    i = int(np.argmax(best))
-    return float(best.max()), float(np.sqrt(np.mean(best ** 2))), float(so[sel][i])
-
-
 def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
               s_shift: float = 0.0) -> list[dict]:
     """The protocol's rows for two static profiles.
@@ -102,7 +76,7 @@ def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
     largest profile difference, BVP coordinate). ``s_shift`` [m] is subtracted from the
     VFIFE arc lengths."""
     rows: list[dict] = []
-    vf = _shifted(vf_prof, s_shift)
+    vf = shifted(vf_prof, s_shift)
     sb, sv = summarize(bvp_prof), summarize(vf)
     lo = max(bvp_prof.s[0], vf.s[0])
     hi = min(bvp_prof.s[-1], vf.s[-1])
@@ -146,7 +120,7 @@ def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
     for kind in ("crests", "sags"):
         tag = kind[:-1]
         for i, cb in enumerate(sb[kind]):
-            cv = _match(cb, sv[kind]) or {"height": None, "s": None}
+            cv = match_feature(cb, sv[kind]) or {"height": None, "s": None}
             add(f"{tag}{i + 1}_height", cb["height"], cv["height"])
             add(f"{tag}{i + 1}_s", cb["s"], cv["s"])
         if len(sv[kind]) != len(sb[kind]):
@@ -164,81 +138,6 @@ def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
         note="between the nearest peaks within the max_moment tolerance of the maximum "
              "(a tie)" if tie else "")
     return rows
-
-
-def nodal_average(nodes: np.ndarray, s: np.ndarray, values: np.ndarray) -> np.ndarray:
-    """``values`` (sampled at ``s``) as VFIFE reports an element force at its ``nodes``:
-    taken at each element's midpoint, averaged over the two elements of an interior node,
-    extrapolated linearly from the last two elements at an end node
-    (``vfife.model.Model.nodal_results``)."""
-    nodes = np.asarray(nodes, float)
-    if len(nodes) < 3:
-        return np.interp(nodes, s, values)
-    e = np.interp(0.5 * (nodes[1:] + nodes[:-1]), s, values)
-    out = np.empty(len(nodes))
-    out[1:-1] = 0.5 * (e[1:] + e[:-1])
-    out[0] = 1.5 * e[0] - 0.5 * e[1]
-    out[-1] = 1.5 * e[-1] - 0.5 * e[-2]
-    return out
-
-
-def signed_moment(p: Profile) -> np.ndarray:
-    """In-plane bending moment with the sign of the curvature d(theta)/ds [N m] for a planar
-    profile (the magnitude otherwise). Interpolating the magnitude across a zero of the
-    moment fills in the V of |M| between two stations: on the Wang riser with a current,
-    where the moment changes sign at the first segment boundary, that alone made an 844 N m
-    (1.8 % of M_max) 'difference' between 1 m VFIFE stations and the BVP."""
-    m = np.asarray(p.moment, float)
-    if np.ptp(np.asarray(p.z, float)) > 1e-9 or len(m) < 3:
-        return m
-    kappa = np.gradient(np.unwrap(np.asarray(p.theta, float)), np.asarray(p.s, float))
-    return np.where(kappa < 0.0, -m, m)
-
-
-def near_max_peaks(p: Profile, tol: float) -> np.ndarray:
-    """Arc lengths [m] of the local maxima of the moment within ``tol`` [N m] of its
-    largest value (the global maximum included), each refined to the vertex of the
-    parabola through its station and the two neighbours (as the summary's max_moment_s):
-    the station alone is up to half an element off (0.5 m on a 1 m VFIFE mesh)."""
-    m = np.asarray(p.moment, float)
-    s = np.asarray(p.s, float)
-    inner = np.flatnonzero((m[1:-1] >= m[:-2]) & (m[1:-1] >= m[2:])) + 1
-    idx = np.unique(np.concatenate([inner, [int(np.argmax(m))]]))
-    idx = idx[m[idx] >= m.max() - tol]
-    return np.array([_parabolic_peak(s, m, int(i))[0] for i in idx])
-
-
-def peak_location_offset(bvp_prof: Profile, vf_prof: Profile, tol: float) -> float:
-    """Signed offset s_VFIFE - s_BVP [m] between the nearest near-maximum moment peaks of
-    the two methods (see :func:`peak_location_distance`)."""
-    sb, sv = near_max_peaks(bvp_prof, tol), near_max_peaks(vf_prof, tol)
-    d = sv[None, :] - sb[:, None]
-    return float(d.flat[int(np.argmin(np.abs(d)))])
-
-
-def peak_location_distance(bvp_prof: Profile, vf_prof: Profile, tol: float) -> float:
-    """Distance [m] between the peak-moment locations of the two methods, allowing for
-    ties: the peak location is only defined up to the peaks whose moments lie within the
-    peak-moment tolerance ``tol`` of the maximum (the Wang baseline's crest and sag-bend
-    moments are equal to 1e-5, 276 m apart), so this is the smallest distance between a
-    near-maximum peak of one method and one of the other."""
-    return abs(peak_location_offset(bvp_prof, vf_prof, tol))
-
-
-def _shifted(p: Profile, s_shift: float) -> Profile:
-    if not s_shift:
-        return p
-    q = dataclasses.replace(p, s=p.s - s_shift)
-    if p.tdp_s is not None:
-        q.tdp_s = p.tdp_s - s_shift
-    return q
-
-
-def _match(item: dict, candidates: list[dict]) -> dict | None:
-    """The candidate crest/sag nearest in arc length (None if there is none)."""
-    if not candidates:
-        return None
-    return min(candidates, key=lambda c: abs(c["s"] - item["s"]))
 
 
 # ----------------------------------------------------------------------------- pipeline
@@ -303,8 +202,7 @@ def model_text(scene: Scene) -> str:
 
 
 def compare(scene: Scene, *, element_length: float | None = None, paper_model: bool = True,
-            vfife_modifier=None, seabed_length: float = DEFAULT_SEABED_LENGTH,
-            log=None) -> Comparison:
+            vfife_modifier=None, log=None) -> Comparison:
     """Solve ``scene`` with both methods in the same model and compute the agreement rows.
 
     ``element_length`` [m]: VFIFE element length (default the scene's ``[vfife]
@@ -312,51 +210,35 @@ def compare(scene: Scene, *, element_length: float | None = None, paper_model: b
     with the same VFIFE run (secondary section, not part of the verdict).
     ``vfife_modifier`` (Scene -> Scene) alters only the VFIFE scene:
     used by the negative controls (e.g. drag halved) to prove that the check can fail.
-    A scene with [dynamics] is compared in its static equilibrium.
+    A scene with [dynamics] is compared in its static equilibrium. Raises
+    :class:`~riser.errors.SolveFailed` when a method does not converge.
     """
-    import bvp
-    import vfife
     say = log or (lambda msg: None)
     notes: list[str] = []
     if scene.dynamics is not None:
         scene = scene.replace(dynamics=None)
         notes.append("The scene's [dynamics] are ignored: the protocol compares the static "
                      "equilibrium.")
-    paper = None
     t0 = time.perf_counter()
-    if scene.ends.kind == "fixed":
-        matched, s_shift = scene, 0.0
-    else:
-        paper = bvp.solve(scene)
-        say(f"{scene.name}: paper-model BVP {paper.message} ({time.perf_counter() - t0:.1f} s)")
-        if not paper.converged:
-            raise RuntimeError(f"bvp (paper model) did not converge on {scene.name}: "
-                               f"{paper.message}")
-        sp = paper.summary()
-        matched = fixed_ends_from_bvp(scene, paper, seabed_length)
-        s_shift = float(seabed_length)
-        notes.append(
-            f"The scene's `{scene.ends.kind}` ends were converted to fixed ends from its "
-            f"paper-model BVP solution (inextensible, rigid seabed): hang-off fixed at that "
-            f"top point ({sp['hang_off_x']:.3f}, {sp['hang_off_height']:.3f}) m, anchor on the "
-            f"seabed at x = {-seabed_length:g} m, i.e. {seabed_length:g} m of line added to the "
-            f"first segment; both methods solve this converted scene.")
-        notes.append(
-            f"Arc lengths s are in the scene's own coordinate, measured from the paper-model "
-            f"touchdown: the converted scene's s minus the {seabed_length:g} m of line added "
-            f"on the seabed (negative s lies on that added line).")
+    eq = vfife_equivalent(scene)
+    matched, s_shift, paper = eq.scene, eq.s_shift, eq.paper
+    if eq.note:
+        say(f"{scene.name}: paper-model BVP {paper.message} ({eq.seconds:.1f} s)")
+        notes.append(f"The scene was converted: {eq.note}; both methods solve this "
+                     "converted scene.")
     b = bvp.solve(matched)
     say(f"{scene.name}: matched BVP {b.message} ({time.perf_counter() - t0:.1f} s)")
     if not b.converged:
-        raise RuntimeError(f"bvp did not converge on {matched.name}: {b.message}")
+        raise SolveFailed("bvp", b.status, f"bvp did not converge on {matched.name}: "
+                          f"{b.message}")
     vf_scene = vfife_modifier(matched) if vfife_modifier is not None else matched
-    opts = {"element_length": element_length} if element_length else {}
-    v = vfife.solve(vf_scene, **opts)
+    v = vfife.solve(vf_scene, element_length=element_length)
     say(f"{scene.name}: VFIFE {v.message} ({time.perf_counter() - t0:.1f} s)")
     if not v.converged:
-        raise RuntimeError(f"vfife did not converge on {scene.name}: {v.message}")
+        raise SolveFailed("vfife", v.status, f"vfife did not converge on {scene.name}: "
+                          f"{v.message}")
     depth = reference_depth(scene, b.summary())
-    bp, vp = _shifted(b.profile, s_shift), _shifted(v.profile, s_shift)
+    bp, vp = shifted(b.profile, s_shift), shifted(v.profile, s_shift)
     rows = agreement(bp, vp, depth)
     comp = Comparison(scene, vf_scene, s_shift, depth, b, v, rows, matched_scene=matched,
                       notes=notes)

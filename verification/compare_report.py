@@ -5,13 +5,20 @@ section) and the plots."""
 from __future__ import annotations
 
 import math
+import time
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 
-from .compare import (AGREEMENT_COLUMNS, ROUND_OFF, Comparison, _shifted, model_text,
-                      nodal_average, signed_moment)
-from .report import GENERATED_NOTE, fmt, md_table, new_figure, save
+from riser.errors import SolveFailed
+
+from .catalog import resolve
+from .compare import AGREEMENT_COLUMNS, ROUND_OFF, Comparison, compare, model_text
+from .pipeline import shifted
+from .quantities import nodal_average, signed_moment
+from .report import GENERATED_NOTE, fmt, md_table, new_figure, pct, save
+from .study import Study
 
 
 def write(comp: Comparison, out_dir: str | Path) -> None:
@@ -175,8 +182,8 @@ def report_markdown(comp: Comparison, heading: str = "#") -> str:
 
 
 def _plots(comp: Comparison, out: Path) -> None:
-    bp = _shifted(comp.bvp.profile, comp.s_shift)
-    vp = _shifted(comp.vfife.profile, comp.s_shift)
+    bp = shifted(comp.bvp.profile, comp.s_shift)
+    vp = shifted(comp.vfife.profile, comp.s_shift)
     pp = comp.paper.profile if comp.paper is not None and comp.paper.converged else None
     fig, axes = new_figure(1, 1, (9, 5))
     ax = axes[0, 0]
@@ -220,3 +227,45 @@ def _plots(comp: Comparison, out: Path) -> None:
         ax.grid(alpha=0.3)
     axes[2, 0].set_xlabel("arc length s [m] (the scene's coordinate)")
     save(fig, out / "differences.png")
+
+
+# ----------------------------------------------------------------------------- the study
+#: scenes with a comparison report in reports/compare/ (every built-in scene but the hard
+#: cases, which are the stress suite's)
+COMPARE_SCENES = ("wang2014-baseline", "wang2014-current-neg1p5", "wang2014-current-neg0p75",
+                  "wang2014-current-0p75", "wang2014-current-1p5", "scr-steel",
+                  "yu2021-a1", "yu2021-a2", "yu2021-a2-sheared", "yu2021-a3", "yu2021-a4")
+
+
+def run_unit(scene_name: str, out: Path, note: str = "") -> str:
+    """Compare one built-in scene into ``out/scene_name``; returns the log line."""
+    t0 = time.perf_counter()
+    try:
+        comp = compare(resolve(scene_name))
+    except SolveFailed as exc:
+        return f"compare {scene_name}: {exc}"
+    write(comp, out / scene_name)
+    return (f"compare {scene_name}: {'PASS' if comp.passed else 'FAIL'} "
+            f"({time.perf_counter() - t0:.1f} s)")
+
+
+def index_row(d: Path):
+    """(cases, worst agreement, verdict) of one scene's comparison directory."""
+    if not (d / "agreement.csv").exists():
+        return None
+    df = pd.read_csv(d / "agreement.csv")
+    failed = df[~df["pass"].astype(bool)].quantity.tolist()
+    rows = df.set_index("quantity")
+    bases = {"configuration": "of depth", "tension": "of T_max", "moment": "of M_max"}
+    text = ", ".join(f"{q} {pct(rows.loc[q, 'rel_diff'], 2)} {bases[q]}" for q in bases
+                     if q in rows.index)
+    if "tdp_x" in rows.index:
+        tdp = rows.loc["tdp_x"]
+        text += f", touchdown {tdp['vfife'] - tdp['bvp']:+.3f} m"
+    if failed:
+        text += f"; outside tolerance: {', '.join(failed)}"
+    return "1 scene", text, "pass" if not failed else "fail"
+
+
+STUDY = Study("compare", COMPARE_SCENES, run_unit, index_row)
+

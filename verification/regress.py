@@ -14,6 +14,7 @@ import math
 from pathlib import Path
 
 from .catalog import SCENE_DIR, builtin_paths, resolve
+from .pipeline import solve_scene
 
 STORE = Path(__file__).parent / "regression"
 REGRESSION_ELEMENT_LENGTH = 5.0      # m
@@ -39,14 +40,12 @@ def regression_scenes() -> list[str]:
 def snapshot(name: str, methods=("bvp", "vfife")) -> dict:
     """Solve built-in scene ``name`` with each method (statics) and keep the regression
     quantities."""
-    from .cli import solve_scene
     scene = resolve(name).replace(dynamics=None)
     out = {"scene": name, "vfife_element_length": REGRESSION_ELEMENT_LENGTH}
     for m in methods:
         if m == "bvp" and scene.current is not None and not scene.current.is_planar:
             continue
-        opts = {"element_length": REGRESSION_ELEMENT_LENGTH} if m == "vfife" else {}
-        res = solve_scene(scene, m, **opts)
+        res = solve_scene(scene, m, element_length=REGRESSION_ELEMENT_LENGTH)
         sm = res.summary()
         entry = {"converged": res.converged}
         if res.converged:

@@ -29,10 +29,15 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from riser.errors import SceneError, UnsupportedSceneError
+from riser.errors import SceneError, SolveFailed, UnsupportedSceneError
+from riser.result import Status
 
 from .catalog import SCENE_DIR, resolve
+from .compare import agreement
+from .pipeline import solve_scene
+from .quantities import reference_depth
 from .report import GENERATED_NOTE, fmt, md_table
+from .study import Study
 
 HARD_DIR = SCENE_DIR / "hard"
 COLUMNS = ["scene", "method", "outcome", "residual", "residual_kind", "wall_time_s", "agreement",
@@ -47,16 +52,14 @@ def hard_scenes() -> list[str]:
     return sorted(p.stem for p in HARD_DIR.glob("*.toml"))
 
 
-def _classify_failure(message: str) -> str:
-    m = message.lower()
-    if "no static equilibrium" in m or "tends to zero" in m or "cannot reach" in m:
-        return "no equilibrium"
-    return "failed"
+#: the outcome a result's status gives (a converged result is checked further)
+OUTCOME = {Status.CONVERGED: "converged", Status.REFUSED: "refused",
+           Status.NO_EQUILIBRIUM: "no equilibrium", Status.DIVERGED: "failed",
+           Status.NOT_CONVERGED: "failed"}
 
 
 def run_one(name: str, method: str) -> tuple[dict, object]:
     """Solve one scene with one method and classify the outcome; never raises."""
-    from .cli import solve_scene
     row = {"scene": name, "method": method, "residual": None, "residual_kind": "",
            "agreement": "", "message": ""}
     t0 = time.perf_counter()
@@ -65,9 +68,11 @@ def run_one(name: str, method: str) -> tuple[dict, object]:
         scene = resolve(name)
         res = solve_scene(scene, method)
     except UnsupportedSceneError as exc:
-        row.update(outcome="refused", message=str(exc))
-    except (SceneError, RuntimeError) as exc:
-        row.update(outcome=_classify_failure(str(exc)), message=str(exc))
+        row.update(outcome=OUTCOME[Status.REFUSED], message=str(exc))
+    except SceneError as exc:                      # bad input: stopped with its reason
+        row.update(outcome="failed", message=str(exc))
+    except SolveFailed as exc:
+        row.update(outcome=OUTCOME[exc.status], message=str(exc))
     except Exception as exc:                       # noqa: BLE001 - the point is to catch it
         row.update(outcome="SILENT FAILURE",
                    message=f"exception {type(exc).__name__}: {exc} "
@@ -81,7 +86,7 @@ def run_one(name: str, method: str) -> tuple[dict, object]:
             row["outcome"] = "SILENT FAILURE"
             row["message"] += " (and returned a non-finite profile)"
         else:
-            row["outcome"] = _classify_failure(res.message)
+            row["outcome"] = OUTCOME[res.status]
         return row, None
     problems = []
     if res.profile is None or not res.profile.is_finite():
@@ -92,27 +97,25 @@ def run_one(name: str, method: str) -> tuple[dict, object]:
         if row["residual"] is None or row["residual"] > BVP_EQUILIBRIUM_LIMIT:
             problems.append(f"force balance {row['residual']}")
     else:
-        row["residual"] = res.info.get("residual")
+        row["residual"] = res.info.get("force_residual")
         row["residual_kind"] = "out-of-balance / element weight"
         tol = res.info.get("tolerance", 1e-3)
         if row["residual"] is None or not row["residual"] <= 1.01 * tol:
             problems.append(f"residual {row['residual']} above its tolerance {tol}")
-        dyn = getattr(res, "dynamics", None)
-        if dyn is not None:
-            problems += _dynamic_checks(dyn)
+        if res.dynamics is not None:
+            problems += _dynamic_checks(res.dynamics)
     row["outcome"] = "SILENT FAILURE" if problems else "converged"
     if problems:
         row["message"] += " | " + "; ".join(problems)
     return row, res
 
 
-def _dynamic_checks(dyn: dict) -> list[str]:
+def _dynamic_checks(dyn) -> list[str]:
     out = []
-    ts = dyn.get("timeseries", {})
-    T = np.asarray(ts.get("hang_off_tension", []), dtype=float)
+    T = np.asarray(dyn.timeseries.get("hang_off_tension", []), dtype=float)
     if T.size == 0 or not np.all(np.isfinite(T)):
         out.append("non-finite hang-off tension series")
-    st = dyn.get("states")
+    st = dyn.states
     if st is not None and len(st.get("t", [])) >= 10:
         v2 = np.mean(np.sum(np.asarray(st["v"]) ** 2, axis=2), axis=1)   # (k,)
         k = len(v2)
@@ -126,7 +129,6 @@ def _dynamic_checks(dyn: dict) -> list[str]:
 
 def run(out_dir: str | Path = "reports/stress", names: list[str] | None = None, log=print) -> pd.DataFrame:
     """Run the hard-case suite; write ``summary.csv`` and ``report.md``."""
-    from .compare import agreement, reference_depth
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     rows = []
@@ -148,12 +150,8 @@ def run(out_dir: str | Path = "reports/stress", names: list[str] | None = None, 
             evidence += f", minimum tension {vs['min_tension'] / 1e3:.1f} kN"
             rows[-2]["message"] += evidence
         if b is not None and v is not None:
-            shift = 0.0
-            note = v.info.get("ends_conversion")
-            if note:
-                from .equivalence import DEFAULT_SEABED_LENGTH
-                shift = DEFAULT_SEABED_LENGTH
-            agr = agreement(b.profile, v.profile, reference_depth(resolve(name), b.summary()), shift)
+            # both profiles are in the scene's own arc length (solve_scene shifts the VFIFE's)
+            agr = agreement(b.profile, v.profile, reference_depth(resolve(name), b.summary()))
             failed = [r["quantity"] for r in agr if not r["pass"]]
             text = (f"{len(agr) - len(failed)}/{len(agr)} rows pass"
                     + (f" (outside: {', '.join(failed)})" if failed else ""))
@@ -187,3 +185,19 @@ def _report(df: pd.DataFrame, out: Path) -> None:
         lines.append(f"- `{r.scene}` [{r.method}] {r.outcome}: {r.message}")
     lines.append("")
     (out / "report.md").write_text("\n".join(lines))
+
+
+def index_row(d: Path):
+    """(cases, worst agreement, verdict) of a hard-case report directory."""
+    if not ((d / "summary.csv").exists() and (d / "report.md").exists()):
+        return None
+    df = pd.read_csv(d / "summary.csv")
+    silent = int((df.outcome == "SILENT FAILURE").sum())
+    counts = ", ".join(f"{k} {v}" for k, v in sorted(df.outcome.value_counts().items()))
+    return (f"{df.scene.nunique()} scenes x 2 methods", f"{silent} silent failures ({counts})",
+            "pass" if not silent else "fail")
+
+
+STUDY = Study("stress", (None,), lambda unit, out, note: run(out), index_row,
+              seconds={None: 250})
+

@@ -20,15 +20,19 @@ import math
 import time
 from pathlib import Path
 
-import numpy as np
 import pandas as pd
 from scipy.optimize import brentq
 
 import bvp
+import vfife
+from riser.errors import SolveFailed
 from riser.scene import Ends, Scene
+from riser.transform import fixed_ends_scene
 
 from .catalog import resolve
+from .pipeline import vfife_equivalent
 from .report import GENERATED_NOTE, md_table, new_figure, pct, save
+from .study import Study
 
 # Table 2 of the paper: V0 -> (S_L, X, Y_arch, Y_sag, T_TDP, T_max, M_max, F_max)
 TABLE2 = {
@@ -44,6 +48,12 @@ PRINTED_ANGLE = 78.88        # deg from horizontal
 QUANTITIES = COLUMNS + ("hang_off_height", "hang_off_angle_deg")
 SCENES = {-1.5: "wang2014-current-neg1p5", -0.75: "wang2014-current-neg0p75",
           0.0: "wang2014-baseline", 0.75: "wang2014-current-0p75", 1.5: "wang2014-current-1p5"}
+
+
+def bench_scene() -> Scene:
+    """The benchmark's scene (``riser-verify bench``): the baseline fixed at the paper's
+    hang-off point (1625.0, 1586.3) m with 300 m of line on the default seabed."""
+    return fixed_ends_scene(resolve(SCENES[0.0]), (1625.0, 1586.3), 300.0)
 
 
 def paper_values(v: float) -> dict:
@@ -89,29 +99,29 @@ def inverse(scene: Scene, height: float, angle: float) -> Scene:
 def _solve(scene: Scene):
     res = bvp.solve(scene)
     if not res.converged:
-        raise RuntimeError(f"{scene.name}: {res.message}")
+        raise SolveFailed("bvp", res.status, f"{scene.name}: {res.message}")
     return res
 
 
 def vfife_quantities(scene: Scene, bvp_result, element_length: float | None = None) -> dict:
     """The Table 2 quantities from VFIFE on the fixed-ends equivalent of a BVP result
-    (hang-off at the BVP top point, 300 m of line ahead of the touchdown on the elastic
-    default seabed), and under ``"_matched"`` those of the BVP solving that same scene (the
-    extensible line on the elastic seabed: the model VFIFE solves)."""
-    import vfife
-    from .equivalence import DEFAULT_SEABED_LENGTH as extra, fixed_ends_from_bvp
-    sm = bvp_result.summary()
-    first = sm["first_segment_suspended_length"]
-    fixed = fixed_ends_from_bvp(scene, bvp_result, extra)
-    res = vfife.solve(fixed, **({"element_length": element_length} if element_length else {}))
+    (:func:`verification.pipeline.vfife_equivalent`: hang-off at the BVP top point, 300 m
+    of line ahead of the touchdown on the elastic default seabed), and under
+    ``"_matched"`` those of the BVP solving that same scene (the extensible line on the
+    elastic seabed: the model VFIFE solves)."""
+    eq = vfife_equivalent(scene, paper=bvp_result)
+    res = vfife.solve(eq.scene, element_length=element_length)
     if not res.converged:
-        raise RuntimeError(f"vfife on {scene.name}: {res.message}")
-    matched = bvp.solve(fixed)
+        raise SolveFailed("vfife", res.status, f"vfife on {scene.name}: {res.message}")
+    matched = bvp.solve(eq.scene)
     if not matched.converged:
-        raise RuntimeError(f"bvp on the fixed-ends {scene.name}: {matched.message}")
+        raise SolveFailed("bvp", matched.status, f"bvp on the fixed-ends {scene.name}: "
+                          f"{matched.message}")
+    # S_L: the converted first segment's length beyond the BVP touchdown
+    first = eq.scene.segments[0].length
     v, m = res.summary(), matched.summary()
-    return {**table2_quantities(v, first + extra - v["tdp_s"]), "_wall_time_s": res.wall_time_s,
-            "_matched": table2_quantities(m, first + extra - m["tdp_s"])}
+    return {**table2_quantities(v, first - v["tdp_s"]), "_wall_time_s": res.wall_time_s,
+            "_matched": table2_quantities(m, first - m["tdp_s"])}
 
 
 def run(out_dir: str | Path = "reports/wang2014", log=print, methods=("bvp", "vfife")) -> pd.DataFrame:
@@ -377,3 +387,29 @@ def _wide(df: pd.DataFrame, variant: str) -> list[str]:
             rows.append([f"{v:+g} vfife diff"] + [pct(r.loc[q, "vfife_rel_err"], 3)
                                                   for q in COLUMNS + ("hang_off_angle_deg",)])
     return [md_table(header, rows)]
+
+
+def index_row(d: Path):
+    """(cases, worst agreement, verdict) of a Table 2 report directory."""
+    if not (d / "table2.csv").exists():
+        return None
+    df = pd.read_csv(d / "table2.csv")
+    fwd = df[(df.variant == "forward") & (df.quantity != "hang_off_height")]
+    worst_b = fwd.bvp_rel_err.abs().max()
+    cases = f"{df.current.nunique()} currents x {df.variant.nunique()} variants"
+    text = f"BVP vs paper (forward) worst {pct(worst_b)}"
+    matched = d / "vfife_matched.csv"
+    if matched.exists():
+        m = pd.read_csv(matched)
+        m = m[m.quantity != "hang_off_height"]
+        rel = ((m.vfife - m.bvp_matched) / m.bvp_matched.abs()).abs()
+        model = ((m.bvp_matched - m.bvp_paper_model) / m.bvp_paper_model.abs()).abs()
+        text += (f"; VFIFE vs BVP of the same model worst {pct(rel.max())} "
+                 f"({m.loc[rel.idxmax(), 'quantity']}); that model vs the paper's worst "
+                 f"{pct(model.max())} ({m.loc[model.idxmax(), 'quantity']})")
+    return cases, text, "pass" if worst_b <= 5e-4 else "fail"
+
+
+STUDY = Study("wang2014", (None,), lambda unit, out, note: run(out), index_row,
+              seconds={None: 120})
+

@@ -25,7 +25,6 @@ Definitions used for the paper's quantities:
 from __future__ import annotations
 
 import dataclasses
-import math
 import time
 from pathlib import Path
 
@@ -33,10 +32,13 @@ import numpy as np
 import pandas as pd
 from scipy.optimize import brentq
 
+from riser.errors import SolveFailed
 from riser.scene import Current, Ends, Scene
 
 from .catalog import resolve
+from .pipeline import solve_scene
 from .report import GENERATED_NOTE, md_table, new_figure, pct, save
+from .study import Study
 
 DEPTH = 500.0
 BUOYANCY = 1130.0          # N/m
@@ -121,13 +123,13 @@ def with_buoyancy(scene: Scene, factors: dict[int, float]) -> Scene:
 
 def calibrate_hang_off_x(log=print) -> float:
     """X_h [m] such that A3 without current hangs off at 4.372 deg from vertical (BVP)."""
-    import bvp
     a3 = resolve("yu2021-a3")
 
     def resid(xh):
-        res = bvp.solve(with_hang_off_x(a3, xh))
+        res = solve_scene(with_hang_off_x(a3, xh), "bvp")
         if not res.converged:
-            raise RuntimeError(f"calibration: bvp failed at X_h = {xh}: {res.message}")
+            raise SolveFailed("bvp", res.status, f"calibration: bvp failed at X_h = {xh}: "
+                              f"{res.message}")
         return 90.0 - res.summary()["hang_off_angle_deg"] - TARGET_ANGLE_FROM_VERTICAL
 
     xh = brentq(resid, 500.0, 750.0, xtol=1e-3)
@@ -181,7 +183,6 @@ def cases(xh: float) -> list[tuple[str, str, Scene]]:
 def run(out_dir: str | Path = "reports/yu2021", methods=("bvp", "vfife"), log=print,
         element_length: float | None = None) -> pd.DataFrame:
     """Run every case with the given methods; write table.csv, report.md and figures."""
-    import bvp
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     t0 = time.perf_counter()
@@ -192,11 +193,7 @@ def run(out_dir: str | Path = "reports/yu2021", methods=("bvp", "vfife"), log=pr
         q = {}
         for m in methods:
             t = time.perf_counter()
-            if m == "bvp":
-                res = bvp.solve(sc)
-            else:
-                import vfife
-                res = vfife.solve(sc, **({"element_length": element_length} if element_length else {}))
+            res = solve_scene(sc, m, element_length=element_length)
             timing[m] += time.perf_counter() - t
             if not res.converged:
                 log(f"yu2021: {m} failed on {study}/{case}: {res.message}")
@@ -323,3 +320,28 @@ def _report(df: pd.DataFrame, out: Path, xh: float, stored: float, timing: dict,
               "; tensions in N, moments in N m, positions in m (paper frame), angles in deg "
               "from vertical.", ""]
     (out / "report.md").write_text("\n".join(lines))
+
+
+def index_row(d: Path):
+    """(cases, worst agreement, verdict) of a reproduction directory."""
+    if not (d / "table.csv").exists():
+        return None
+    df = pd.read_csv(d / "table.csv")
+    cmp = df[df.paper.notna()]
+    parts = []
+    for m in ("bvp", "vfife"):
+        col = cmp[f"{m}_rel_err"].abs()
+        if col.notna().any():
+            parts.append(f"{m.upper()} vs paper median {pct(col.median(), 1)}, worst "
+                         f"{pct(col.max(), 1)}")
+    both = df[df.bvp.notna() & df.vfife.notna()]
+    if len(both):
+        rel = ((both.vfife - both.bvp).abs() / both.bvp.abs())
+        parts.append(f"VFIFE vs BVP worst {pct(rel.max(), 2)}")
+    cases = f"{df[['study', 'case']].drop_duplicates().shape[0]} cases"
+    return cases, "; ".join(parts), "reported (paper inputs incomplete)"
+
+
+STUDY = Study("yu2021", (None,), lambda unit, out, note: run(out), index_row,
+              seconds={None: 90})
+

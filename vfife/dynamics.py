@@ -51,7 +51,7 @@ def _axis(scene) -> np.ndarray:
     return ax
 
 
-def blow_up_cause(scene, info: dict) -> str:
+def blow_up_cause(info: dict) -> str:
     """Most likely cause of a blow-up, from the run settings."""
     steps = info.get("critical_steps", {})
     dt = info.get("time_step", 0.0)
@@ -81,7 +81,7 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
     vf = scene.vfife
     mesh = static.mesh
     added = any(scene.line_types[s.line_type].added_mass > 0.0 for s in scene.segments)
-    rot_scale = vf.get("rotational_inertia_scale_dynamics", 4.0)
+    rot_scale = vf.rotational_inertia_scale_dynamics
     model = Model(scene, mesh, rot_scale=rot_scale, added_mass=added, planar=planar)
     model.X[:] = static.X
     model.D[:] = static.D
@@ -91,9 +91,9 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
                            seabed_stiffness=kseabed, seabed_damping=model.cseabed,
                            drag_speed=2.0 * max_speed_hint(scene)
                            if model.use_drag else 0.0)
-    dt, limit = choose_step(steps, vf.get("time_step_safety", 0.8))
-    if vf.get("time_step") is not None:          # user-fixed step (may exceed the critical)
-        dt, limit = float(vf["time_step"]), "user ([vfife] time_step)"
+    dt, limit = choose_step(steps, vf.time_step_safety)
+    if vf.time_step is not None:          # user-fixed step (may exceed the critical)
+        dt, limit = float(vf.time_step), "user ([vfife] time_step)"
     tm = dyn.top_motion
     out_dt = dyn.output_interval
     env_dt = out_dt
@@ -148,7 +148,7 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
             status = "blow-up"
             message = (f"dynamics diverged (blow-up) at t = {t:.4g} s (NaN/inf or speed > "
                        "1000 m/s); likely cause: "
-                       + blow_up_cause(scene, {"critical_steps": steps, "time_step": dt}))
+                       + blow_up_cause({"critical_steps": steps, "time_step": dt}))
             break
         # energy-growth guard: kinetic energy far above the work the motion can put in
         if e0 is None:
@@ -156,8 +156,8 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
         elif ke > 1e6 * e0 and ke > 1e3 * float(np.sum(model.mass)):
             status = "blow-up"
             message = (f"dynamics diverged (blow-up, energy growth) at t = {t:.4g} s (kinetic energy {ke:.3g} J); likely "
-                       "cause: " + blow_up_cause(scene, {"critical_steps": steps,
-                                                         "time_step": dt}))
+                       "cause: " + blow_up_cause({"critical_steps": steps,
+                                                  "time_step": dt}))
             break
         sample(t, (j + 1) % per_out == 0)
         if progress is not None and (j + 1) % max(1, n_env // 20) == 0:

@@ -129,28 +129,13 @@ def element_pass(x, y, z, dx_, dy_, dz_, l0, kax, kb, f0, f1, f2, a0, a1, a2, b0
 
 
 @njit(**_JIT)
-def current_speed(y, heights, speeds):
-    """Signed current speed [m/s] at height y [m]: piecewise linear, constant outside."""
-    nh = heights.shape[0]
-    if nh == 1 or y <= heights[0]:
-        return speeds[0]
-    if y >= heights[nh - 1]:
-        return speeds[nh - 1]
-    j = 1
-    while heights[j] < y:
-        j += 1
-    t = (y - heights[j - 1]) / (heights[j] - heights[j - 1])
-    return speeds[j - 1] + t * (speeds[j] - speeds[j - 1])
-
-
-@njit(**_JIT)
 def current_pass(y, heights, speeds, slopes, U):
-    """Current speed U[i] [m/s] at every node height y[i] [m], the same piecewise-linear
-    profile as :func:`current_speed` written branch-free as a sum of clamped ramps,
-    U = speeds[0] + sum_j slopes[j] (clip(y, h_j, h_j+1) - h_j), slopes[j] =
+    """Current speed U[i] [m/s] at every node height y[i] [m]: the signed speed piecewise
+    linear in height, constant outside the given heights, written branch-free as a sum of
+    clamped ramps, U = speeds[0] + sum_j slopes[j] (clip(y, h_j, h_j+1) - h_j), slopes[j] =
     (speeds[j+1] - speeds[j]) / (h_j+1 - h_j), so that the loop over the nodes vectorises
-    (the search loop of :func:`current_speed` per node does not; equal to it to round-off).
-    A single height (uniform current) is a fill."""
+    (a search for the interval of each node does not; equal to it to round-off). A single
+    height (uniform current) is a fill."""
     n = y.shape[0]
     s0 = speeds[0]
     for i in range(n):

@@ -28,9 +28,8 @@ class Mesh:
         length [m] and per-length section values (EA [N], EI [N m2], mass [kg/m], submerged
         weight [N/m, + down], diametral rotary inertia [kg m], added mass [kg/m], drag
         coefficients 0.5 rho D C_D [kg/m2]).
-    segment : (ne,) segment index of each element.
-    mass, weight, rot, added, cdn, cdt, trib : (n,) lumped nodal values (kg, N, kg m2 per
-        unit rotational-inertia scale, kg, kg/m, kg/m, tributary length m).
+    trib : (n,) tributary length of the nodes [m]; :meth:`lump` gives the other nodal
+        values.
     """
 
     s: np.ndarray
@@ -43,7 +42,6 @@ class Mesh:
     added_pl: np.ndarray
     cdn_pl: np.ndarray
     cdt_pl: np.ndarray
-    segment: np.ndarray
 
     @property
     def n(self) -> int:
@@ -70,7 +68,7 @@ def build_mesh(scene: Scene, element_length: float) -> Mesh:
     """Mesh ``scene`` with elements of at most ``element_length`` [m]."""
     props = segment_properties(scene)
     cols: dict[str, list] = {k: [] for k in ("l0", "EA", "EI", "mass_pl", "weight_pl", "rot_pl",
-                                             "added_pl", "cdn_pl", "cdt_pl", "segment")}
+                                             "added_pl", "cdn_pl", "cdt_pl")}
     s = [0.0]
     for p in props:
         ne = max(1, int(math.ceil(p.length / element_length - 1e-9)))
@@ -86,9 +84,7 @@ def build_mesh(scene: Scene, element_length: float) -> Mesh:
         cols["added_pl"] += [p.added_mass] * ne
         cols["cdn_pl"] += [p.drag_normal_coef] * ne
         cols["cdt_pl"] += [p.drag_tangential_coef] * ne
-        cols["segment"] += [p.index] * ne
-    arrays = {k: np.asarray(v, dtype=float if k != "segment" else np.int64)
-              for k, v in cols.items()}
+    arrays = {k: np.asarray(v, dtype=float) for k, v in cols.items()}
     s_arr = np.asarray(s)
     s_arr[-1] = props[-1].s_end
     return Mesh(s=s_arr, **arrays)

@@ -52,7 +52,7 @@ class Model:
         self.madd = mesh.lump(mesh.added_pl) if added_mass else np.zeros(n)
         self.im = 1.0 / (self.mass + self.madd)
         self.imd = 1.0 / self.mass - self.im
-        self.clamped = tuple(scene.vfife.get("clamped_ends", ()))
+        self.clamped = tuple(scene.vfife.clamped_ends)
         self._set_rotational_inertia(rot_scale * mesh.lump(mesh.rot_pl))
         self.wload = mesh.lump(mesh.weight_pl)
         self.trib = mesh.trib
@@ -182,7 +182,8 @@ class Model:
         return kernels.element_state(self.X, self.D, self.l0, self.kax, self.kb)
 
     def nodal_results(self) -> dict:
-        """Tension, moment, shear and curvature at the nodes.
+        """Tension, moment, shear and curvature at the nodes, and the element tensions
+        (``element_tension``, (ne,)).
 
         Element axial and shear forces are constant along an element and belong to its
         midpoint: interior nodes take the average of their two elements, end nodes the
@@ -215,8 +216,7 @@ class Model:
         EI_n[1:] += self.mesh.EI
         EI_n /= cnt
         return {"tension": to_nodes(N), "moment": mom, "shear": to_nodes(Q),
-                "curvature": mom / EI_n, "moment_vec": M.T, "element_tension": N,
-                "element_shear": Q}
+                "curvature": mom / EI_n, "element_tension": N}
 
     def energy(self) -> dict:
         """Kinetic, strain and gravity energies [J] of the current state (numpy, for tests)."""

@@ -3,17 +3,16 @@
 from __future__ import annotations
 
 import csv
-import math
 import time
 
 import numpy as np
 
-from riser.errors import SceneError, UnsupportedSceneError
+from riser.errors import UnsupportedSceneError
 from riser.profile import Profile
-from riser.result import SolveResult
+from riser.result import DynamicsResult, SolveResult, Status
 from riser.scene import Scene
+from riser.scene_file import scene_from_dict
 
-from . import kernels
 from .dynamics import run_dynamics
 from .ends import require_fixed_ends
 from .mesh import build_mesh
@@ -24,37 +23,50 @@ _COMPILED = {"done": False, "compile_s": 0.0}
 
 
 def warm_up() -> float:
-    """Compile (or load from Numba's cache) every kernel on a tiny problem; returns the
-    time spent [s] (first run: compilation; later runs: a cache load, ~0.1 s)."""
+    """Compile (or load from Numba's cache) every kernel by stepping a tiny model (3
+    elements of 1 m on a seabed, with current) through :meth:`Model.run` and
+    :meth:`Model.element_state`, the kernels' only Python callers, so that the kernels
+    see the argument types of every real solve: planar and 3D, uniform and profile
+    current. Returns the time spent [s] (first run: compilation, or a cache load of
+    ~0.1 s when Numba's cache is warm; 0 once done in this process, see
+    :func:`compile_seconds`)."""
     if _COMPILED["done"]:
         return 0.0
     t0 = time.perf_counter()
-    n = 4
-    X = np.zeros((3, n))
-    X[0] = np.arange(n, dtype=float)
-    D = np.zeros((3, n))
-    D[0] = 1.0
+    anchor, hang_off = np.array([0.0, 0.0, 0.0]), np.array([2.0, 2.0, 0.0])
+    model = None
     for planar in (True, False):
-        k = 2 if planar else 3
-        one = np.ones(n)
-        for heights in (np.zeros(1), np.array([0.0, 1.0])):     # uniform and profile
-            kernels.run(2, planar, X.copy(), np.zeros((3, n)), D.copy(), np.zeros((3, n)),
-                        np.zeros((k, n - 1)), np.zeros((k - 1 if planar else 3, n - 1)),
-                        np.zeros((k - 1 if planar else 3, n - 1)), np.zeros(n),
-                        np.zeros((2, n)),
-                        np.ones(n - 1), np.ones(n - 1), np.ones(n - 1), one, one, one * 0.0,
-                        one, one, one, one, one, one, heights, np.ones(heights.shape[0]),
-                        np.zeros(max(1, heights.shape[0] - 1)),
-                        np.array([1.0, 0.0] if planar else [1.0, 0, 0]), True, one, 0.1,
-                        0.01, np.ones(n - 1), np.zeros((k, n - 1)), False, 1e-3, 0.0,
-                        X[:, -1].copy(), np.array([0.0, 1.0, 0.0]), np.zeros(3), -1.0, -1.0,
-                        1e3)
-    kernels.element_state(X, D, np.ones(n - 1), np.ones(n - 1), np.ones(n - 1))
+        for heights, speeds in (([0.0], [1.0]), ([0.0, 1.0], [1.0, 0.5])):  # uniform, profile
+            scene = scene_from_dict({
+                "name": "warm-up",
+                "environment": {"current": {"heights": heights, "speeds": speeds,
+                                            "heading_deg": 0.0 if planar else 90.0}},
+                "seabed": {"stiffness": 1.0e5, "friction": 0.1, "damping": 0.1},
+                "line_types": {"pipe": {"outer_diameter": 0.1, "inner_diameter": 0.05,
+                                        "mass_per_length": 10.0, "axial_stiffness": 1.0e6,
+                                        "bending_stiffness": 1.0e3}},
+                "segments": [{"line_type": "pipe", "length": 3.0}],
+                "ends": {"anchor": anchor[:2].tolist(), "hang_off": hang_off[:2].tolist()},
+            }, "warm_up")
+            mesh = build_mesh(scene, 1.0)
+            model = Model(scene, mesh, rot_scale=1.0, added_mass=True, planar=planar)
+            frac = (mesh.s / mesh.s[-1])[:, None]
+            model.set_state(anchor + frac * (hang_off - anchor),
+                            np.broadcast_to(hang_off - anchor, (mesh.n, 3)))
+            model.run(2, 1e-3, 0.0)
+    model.element_state()
     _COMPILED.update(done=True, compile_s=time.perf_counter() - t0)
     return _COMPILED["compile_s"]
 
 
-def bending_checks(scene: Scene, mesh, tension: np.ndarray) -> list[str]:
+def compile_seconds() -> float:
+    """Time [s] the first :func:`warm_up` of this process took: the kernels' compilation
+    on a cold Numba cache, a cache load on a warm one (runs it if it has not run)."""
+    warm_up()
+    return _COMPILED["compile_s"]
+
+
+def bending_checks(mesh, tension: np.ndarray) -> list[str]:
     """Warnings when elements are long compared with the bending lengths
     sqrt(EI/T) (tension boundary layer) or (EI/|w|)^(1/3) (weight-governed sag bends)."""
     out = []
@@ -90,7 +102,7 @@ def _tdp_s(s: np.ndarray, y: np.ndarray, scene: Scene) -> float | None:
     return float(s[i])
 
 
-def make_profile(model: Model, scene: Scene, meta: dict | None = None) -> Profile:
+def make_profile(model: Model, scene: Scene) -> Profile:
     """Profile at the nodes of ``model`` (see :meth:`Model.nodal_results`)."""
     r = model.nodal_results()
     X = model.positions()
@@ -100,8 +112,7 @@ def make_profile(model: Model, scene: Scene, meta: dict | None = None) -> Profil
     theta = np.arctan2(D[:, 1], np.copysign(np.hypot(D[:, 0], D[:, 2]), D[:, 0]))
     return Profile(s=model.mesh.s.copy(), x=X[:, 0], y=X[:, 1], z=X[:, 2], theta=theta,
                    tension=r["tension"], moment=r["moment"], shear=r["shear"],
-                   curvature=r["curvature"], tdp_s=_tdp_s(model.mesh.s, X[:, 1], scene),
-                   meta=meta or {})
+                   curvature=r["curvature"], tdp_s=_tdp_s(model.mesh.s, X[:, 1], scene))
 
 
 def _csv_writer(columns: dict):
@@ -129,18 +140,18 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
     element_length [m]: default ``[vfife] element_length`` (1 m); tolerance: largest nodal
     out-of-balance force / one element's weight (default ``[vfife] static_tolerance``,
     1e-3); progress: optional callable(str).
-    Raises UnsupportedSceneError for scenes without fixed ends. Never returns NaN results:
-    a failed run has converged=False and profile None, with the reason in ``message``.
+    Raises UnsupportedSceneError for scenes without fixed ends, SceneError for an override
+    outside the range of its scene key. Never returns NaN results: a failed run has a
+    status other than converged (diverged, not_converged) and profile None, with the reason
+    in ``message``.
     ``wall_time_s`` excludes Numba compilation (reported as info['compile_s']).
     """
     require_fixed_ends(scene)
-    vf = scene.vfife
-    h = float(element_length if element_length is not None else vf.get("element_length", 1.0))
-    if not 0.0 < h <= 1000.0:         # the range of the scene key (riser/scene.py)
-        raise SceneError(scene.source, "element_length", f"must be > 0 and <= 1000 m, got {h:g}")
-    tol = float(tolerance if tolerance is not None else vf.get("static_tolerance", 1e-3))
+    overrides = {"element_length": element_length, "static_tolerance": tolerance}
+    vf = scene.vfife.replace(**{k: v for k, v in overrides.items() if v is not None})
+    h, tol = vf.element_length, vf.static_tolerance
     planar = bool(scene.is_planar)
-    if vf.get("clamped_ends") and not planar:
+    if vf.clamped_ends and not planar:
         # the elements carry no twist (no GJ): with moment-free ends and no distributed
         # torque a round pipe is torsion-free, but a clamped end of a line loaded out of
         # its plane would need the torsional stiffness
@@ -154,7 +165,9 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
     mesh = model.mesh
     info = {"elements": mesh.ne, "nodes": mesh.n, "element_length": float(np.max(mesh.l0)),
             "time_step": sinfo["time_step"], "steps": sinfo["steps"],
-            "residual": sinfo["residual"], "moment_residual": sinfo["moment_residual"],
+            # largest nodal out-of-balance force / one element's weight, and moment / (that
+            # weight x the element length), over the free nodes
+            "force_residual": sinfo["residual"], "moment_residual": sinfo["moment_residual"],
             "creep_m": sinfo["creep_m"], "creep_tolerance_m": sinfo["creep_tolerance_m"],
             "tolerance": tol, "compile_s": compile_s, "static_scheme": sinfo["static_scheme"],
             "step_limit": sinfo["step_limit"], "critical_steps": sinfo["critical_steps"],
@@ -164,7 +177,13 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
     effects = model.effects
     finite = bool(np.all(np.isfinite(model.X)) and np.all(np.isfinite(model.D)))
     r = model.nodal_results() if finite else None
-    info["warnings"] = bending_checks(scene, mesh, r["element_tension"]) if finite else []
+    warnings = bending_checks(mesh, r["element_tension"]) if finite else []
+
+    def result(status: Status, message: str, profile=None, **fields) -> SolveResult:
+        return SolveResult("vfife", scene.name, status, message, profile,
+                           time.perf_counter() - t0, effects, model=scene.continuum_model(),
+                           warnings=warnings, info=info, **fields)
+
     if sinfo["status"] != "converged" or not finite:
         why = (sinfo.get("diverged") or "static relaxation diverged (NaN/inf in the state); "
                "likely cause: time step above the critical step or an impossible geometry"
@@ -177,40 +196,28 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
                f"static relaxation did not reach the tolerance {tol:g} in {sinfo['steps']} "
                f"steps (residual {sinfo['residual']:.3g} x element weight); raise [vfife] "
                "max_steps or check the geometry")
-        return SolveResult(method="vfife", scene=scene.name, converged=False, message=why,
-                           profile=None, wall_time_s=time.perf_counter() - t0,
-                           effects=effects, info=info)
-    profile = make_profile(model, scene, meta={"method": "vfife"})
-    extra: dict = {}
+        diverged = sinfo["status"] == "blow-up" or not finite
+        return result(Status.DIVERGED if diverged else Status.NOT_CONVERGED, why)
+    profile = make_profile(model, scene)
     message = (f"static equilibrium: residual {sinfo['residual']:.2g} x element weight, "
                f"estimated creep {sinfo['creep_m']:.2g} m, after {sinfo['steps']} steps")
-    converged = True
-    if scene.dynamics is not None:
-        dmodel, dinfo = run_dynamics(scene, model, planar, progress)
-        effects = dinfo["effects"]
-        info.update({"dynamic_time_step": dinfo["time_step"], "dynamic_steps": dinfo["steps"],
-                     "dynamic_step_limit": dinfo["step_limit"],
-                     "dynamic_wall_s": dinfo["wall_s"],
-                     "realtime_factor": dinfo["realtime_factor"],
-                     "states_file": "states.npz (t (k,), s (n,), x (k, n, 3), v (k, n, 3))"})
-        if dinfo["status"] != "ok":
-            converged = False
-            message = dinfo["message"]
-            profile = None
-        else:
-            message += f"; {dinfo['message']} ({dinfo['steps']} steps of {dinfo['time_step']:.3g} s)"
-            ts = dinfo["timeseries"]
-            env = dinfo["envelope"]
-            extra = {"timeseries.csv": _csv_writer(ts), "envelope.csv": _csv_writer(env),
-                     "states.npz": _npz_writer(dinfo["states"])}
-            info["dynamic_max_hang_off_tension"] = float(np.max(ts["hang_off_tension"]))
-            info["dynamic_min_hang_off_tension"] = float(np.min(ts["hang_off_tension"]))
-            info["dynamic_max_moment"] = float(np.max(env["moment_max"]))
-    res = SolveResult(method="vfife", scene=scene.name, converged=converged, message=message,
-                      profile=profile, wall_time_s=time.perf_counter() - t0, effects=effects,
-                      info=info, extra_files=extra)
-    # arrays for programmatic use (not in summary.json): time series and envelopes
-    res.dynamics = ({k: dinfo[k] for k in ("timeseries", "envelope", "states")}
-                    if scene.dynamics is not None else None)
-    res.model = model
-    return res
+    if scene.dynamics is None:
+        return result(Status.CONVERGED, message, profile, solver_state=model)
+    _, dinfo = run_dynamics(scene, model, planar, progress)
+    effects = dinfo["effects"]
+    info.update({"dynamic_time_step": dinfo["time_step"], "dynamic_steps": dinfo["steps"],
+                 "dynamic_step_limit": dinfo["step_limit"], "dynamic_wall_s": dinfo["wall_s"],
+                 "realtime_factor": dinfo["realtime_factor"],
+                 "states_file": "states.npz (t (k,), s (n,), x (k, n, 3), v (k, n, 3))"})
+    if dinfo["status"] != "ok":
+        return result(Status.DIVERGED, dinfo["message"], solver_state=model)
+    message += f"; {dinfo['message']} ({dinfo['steps']} steps of {dinfo['time_step']:.3g} s)"
+    ts, env = dinfo["timeseries"], dinfo["envelope"]
+    info["dynamic_max_hang_off_tension"] = float(np.max(ts["hang_off_tension"]))
+    info["dynamic_min_hang_off_tension"] = float(np.min(ts["hang_off_tension"]))
+    info["dynamic_max_moment"] = float(np.max(env["moment_max"]))
+    return result(Status.CONVERGED, message, profile, solver_state=model,
+                  dynamics=DynamicsResult(ts, env, dinfo["states"]),
+                  extra_files={"timeseries.csv": _csv_writer(ts),
+                               "envelope.csv": _csv_writer(env),
+                               "states.npz": _npz_writer(dinfo["states"])})

@@ -24,21 +24,22 @@ vanish at rest; the out-of-balance force does not count the fictitious damping f
 - the rotational inertia is scaled by ``rotational_inertia_scale`` (default 4, which
   makes the step axial-limited); no added mass;
 - mass-proportional damping c [1/s], a multiple of the estimated fundamental frequency
-  omega_1: ``STATIC_DAMPING`` (3) x 2 omega_1 on the coarse mesh (or a single-stage run
-  from the catenary); on the fine mesh ``STATIC_DAMPING_FINE`` (30) x 2 omega_1
-  (``STATIC_DAMPING_CURRENT``, 10, with a current: the drag load changes with the mesh
+  omega_1: ``static_damping`` (3) x 2 omega_1 on the coarse mesh (or a single-stage run
+  from the catenary); on the fine mesh ``static_damping_fine`` (30) x 2 omega_1
+  (``static_damping_current``, 10, with a current: the drag load changes with the mesh
   along the whole line) until the force residual is met, because its start, the
   interpolated coarse equilibrium, is wrong mostly in short waves, which decay at c/2;
   if the long modes still creep after four windows of the creep check, the fine stage
   goes on at the coarse damping, under which they decay at omega^2 / c (yu2021-a3 at 1 m:
   4.8e6 steps at 30 x throughout, 7.5e5 with the switch);
 - convergence: force residual below the tolerance *and* the displacement still to come
-  (Aitken estimate from windows of steps, see :func:`relax`) below ``CREEP_TOLERANCE``
-  (1e-5) x the line length, on every stage. The force test alone stopped the Wang riser
-  with a current ~1 m of touchdown travel short of its equilibrium (moment difference to
-  the BVP 5.8 % instead of 2.5 %) and made results depend on the path (start, rounding);
+  (Aitken estimate from windows of steps, see :func:`vfife.relaxation.relax`) below
+  ``creep_tolerance`` (1e-5) x the line length, on every stage. The force test alone
+  stopped the Wang riser with a current ~1 m of touchdown travel short of its equilibrium
+  (moment difference to the BVP 5.8 % instead of 2.5 %) and made results depend on the
+  path (start, rounding);
 - an axial dashpot per element on the elongation rate (stiffness-proportional damping of
-  the axial modes, ``AXIAL_DAMPING`` = 0.1 of critical at the highest axial frequency;
+  the axial modes, ``static_axial_damping`` = 0.1 of critical at the highest axial frequency;
   :func:`axial_dashpot`), included in the critical step (x (sqrt(1.01) - 0.1) = 0.905).
   Without it the step count does not scale with EA: the nearly undamped axial modes pile
   up the round-off of the position updates into a residual floor ~ EA^1.25 (Wang
@@ -63,10 +64,10 @@ second touchdown): start from the catenary of a uniform line of the mean |w| and
 weight to the scene's in ``static_weight_continuation_steps`` (10) loose relaxations on the
 first mesh (continuation in buoyancy; the equilibrium is that of the full weight).
 
-Programmatic knobs (``scene.vfife`` entries, not in the scene file schema):
-``static_damping``, ``static_damping_fine``, ``static_damping_current``,
-``creep_tolerance`` (fraction of the line length; 0 turns the creep test off),
-``static_axial_damping`` (0 turns the dashpot off). The relaxation takes ~sqrt(EA) steps
+The knobs named here are the ``[vfife.expert]`` settings of the scene
+(:class:`riser.settings.VFIFESettings`, where their defaults and ranges are written;
+``creep_tolerance`` = 0 turns the creep test off, ``static_axial_damping`` = 0 the
+dashpot). The relaxation takes ~sqrt(EA) steps
 (the axial wave sets the step; the relaxation time is set by the damping and the
 transverse modes, not by EA).
 Converged when the largest nodal out-of-balance force (free nodes) is below
@@ -77,29 +78,14 @@ fraction of that weight x the element length.
 from __future__ import annotations
 
 import math
-import time
 
 import numpy as np
 
 from .mesh import Mesh, build_mesh, catenary_shape, interpolate_state, length_consistent
 from .model import Model
-from .relaxation import static_inertia
+from .relaxation import relax, static_inertia
 from .timestep import choose_step, critical_steps, node_sum
 
-#: damping of the relaxation as a multiple of critical damping of the fundamental mode
-STATIC_DAMPING = 3.0
-#: ... starting value on the fine mesh of a mesh sequence
-STATIC_DAMPING_FINE = 30.0
-#: ... on the fine mesh with a current (the drag load moves long modes there)
-STATIC_DAMPING_CURRENT = 10.0
-#: remaining-displacement (creep) tolerance as a fraction of the line length
-CREEP_TOLERANCE = 1e-5
-#: contact damping ratio of the seabed spring in statics (at least; the scene's if higher)
-STATIC_CONTACT_DAMPING = 1.0
-#: steps of the continuation in weight/buoyancy used when the catenary start is unusable
-WEIGHT_CONTINUATION_STEPS = 10
-#: damping ratio of the axial dashpot at the highest axial frequency of the mesh (statics)
-AXIAL_DAMPING = 0.1
 
 
 def axial_dashpot(mesh: Mesh, zeta: float) -> np.ndarray:
@@ -134,94 +120,6 @@ def fundamental_omega(mesh: Mesh, tension: float) -> float:
     EI = float(np.sum(mesh.EI * mesh.l0)) / L
     k = math.pi / L
     return k * math.sqrt(max(tension, 0.0) / m) + k * k * math.sqrt(EI / m)
-
-
-def weight_scale(mesh: Mesh) -> float:
-    """One element's weight [N] for the residual scale: max |w| l0 (EA-strain-free
-    fallback for weightless lines: 1e-6 EA l0/l0 = 1e-6 EA)."""
-    w = float(np.max(np.abs(mesh.weight_pl * mesh.l0)))
-    return w if w > 0.0 else 1e-6 * float(np.max(mesh.EA))
-
-
-def relax(model: Model, dt: float, c: float, tol: float, max_steps: int,
-          chunk: int = 20000, progress=None, label: str = "",
-          creep_tol: float | None = None, creep_windows: int | None = None) -> dict:
-    """Relax ``model`` to equilibrium; returns a dict (steps, residual (relative),
-    moment_residual (relative), creep_m (estimated remaining displacement [m], NaN when not
-    checked), status 'converged' | 'max_steps' | 'creeping' | 'blow-up', wall_s).
-
-    Converged when the largest nodal out-of-balance force is below ``tol`` x one element's
-    weight (moments: x the element length) and, with ``creep_tol`` [m], when the
-    displacement still to come is below ``creep_tol``. Why the second test: a soft mode
-    (the touchdown sliding along the seabed, the lateral sway of a lazy wave) carries a
-    large displacement error for a small force (error ~ r / (m omega_1^2): 1e-3 element
-    weights is ~1 m on the 2,600 m Wang riser), and the over-damped relaxation creeps
-    towards it at omega_1^2 / c. The remaining displacement is estimated by Aitken
-    extrapolation of the largest nodal displacement over successive windows of steps:
-    d_k -> remaining = d_k q / (1 - q), q = d_k / d_(k-1) (exact for one decaying mode),
-    accepted only once q is steady (changes by <= 0.05 between windows), i.e. the slowest
-    mode dominates the motion. ``creep_windows``: give up after that many windows with
-    status 'creeping' (the caller then changes the damping), None: until ``max_steps``.
-    """
-    wl = weight_scale(model.mesh)
-    h = float(np.max(model.mesh.l0))
-    tol_f = tol * wl
-    tol_m = tol * wl * h
-    t0 = time.perf_counter()
-    done = 0
-    status = "max_steps"
-    res = mres = float("nan")
-    creep = float("nan")
-    while done < max_steps:
-        nstep = min(chunk, max_steps - done)
-        k, res, mres, ke, st = model.run(nstep, dt, c, tol_f=tol_f, tol_m=tol_m)
-        done += k
-        if progress is not None:
-            progress(f"{label} relaxation: {done} steps, residual {res / wl:.3g} x element "
-                     f"weight")
-        if st == 2 or not (np.all(np.isfinite(model.X)) and np.all(np.isfinite(model.D))):
-            status = "blow-up"
-            break
-        if st == 1:
-            if creep_tol is None:
-                status = "converged"
-                break
-            window = int(min(max(done // 4, 1000), 50000))
-            d_prev = math.inf
-            q_prev = math.nan
-            status = "creeping"
-            nwin = 0
-            while done < max_steps and (creep_windows is None or nwin < creep_windows):
-                nwin += 1
-                X0 = model.X.copy()
-                k, res, mres, ke, st = model.run(min(window, max_steps - done), dt, c)
-                done += k
-                if st == 2 or not np.all(np.isfinite(model.X)):
-                    status = "blow-up"
-                    break
-                d = float(np.max(np.sqrt(np.sum((model.X - X0) ** 2, axis=0))))
-                q = d / d_prev if d_prev > 0.0 else 0.0
-                # one decaying mode has a steady ratio q; while faster modes still decay the
-                # ratio grows from window to window and the extrapolation is not yet valid
-                steady = abs(q - q_prev) <= 0.05
-                creep = d * q / (1.0 - q) if (q < 1.0 and steady) else math.inf
-                d_prev, q_prev = d, q
-                if progress is not None:
-                    progress(f"{label} creep check: {done} steps, moved {d:.3g} m in "
-                             f"{window} steps, estimated remaining {creep:.3g} m")
-                # a motion below 1e-3 creep tolerances per window is round-off jitter (its
-                # ratio q is noise): a mode that slow would need > 1000 windows to cover
-                # one creep tolerance
-                if d < 1e-3 * creep_tol:
-                    creep = d
-                if (creep < creep_tol and d < creep_tol and res <= tol_f
-                        and (mres <= tol_m or tol_m <= 0.0)):
-                    status = "converged"
-                    break
-            break
-    return {"steps": done, "residual": res / wl, "moment_residual": mres / (wl * h),
-            "creep_m": creep, "status": status, "wall_s": time.perf_counter() - t0,
-            "dt": dt, "damping": c}
 
 
 def divergence_message(scene, h: float, dt: float, limit: str, steps: dict,
@@ -269,20 +167,19 @@ def mesh_sequence(h_coarse: float, h: float, ratio: float = 4.0) -> list[float]:
 def solve_static(scene, element_length: float, tolerance: float, planar: bool,
                  progress=None) -> tuple[Model, dict]:
     """Static equilibrium of a fixed-ends scene; returns (fine model, info dict)."""
-    vf = scene.vfife
-    safety = vf.get("time_step_safety", 0.8)
-    rot_scale = vf.get("rotational_inertia_scale", 4.0)
-    max_steps = int(vf.get("max_steps", 5_000_000))
-    h_coarse = vf.get("coarse_element_length", 10.0)
-    zeta_a = float(vf.get("static_axial_damping", AXIAL_DAMPING))
-    cfac = float(vf.get("static_damping", STATIC_DAMPING))
-    cfac_fine = float(vf.get("static_damping_fine", STATIC_DAMPING_FINE))
-    cfac_current = float(vf.get("static_damping_current", STATIC_DAMPING_CURRENT))
-    creep_tol = float(vf.get("creep_tolerance", CREEP_TOLERANCE)) * float(
-        sum(sg.length for sg in scene.segments))
-    fictitious = bool(vf.get("static_fictitious_inertia", True))
-    zeta_c = float(vf.get("static_contact_damping", STATIC_CONTACT_DAMPING))
-    cont_steps = int(vf.get("static_weight_continuation_steps", WEIGHT_CONTINUATION_STEPS))
+    vf = scene.vfife                    # riser.settings.VFIFESettings (defaults there)
+    safety = vf.time_step_safety
+    rot_scale = vf.rotational_inertia_scale
+    max_steps = vf.max_steps
+    h_coarse = vf.coarse_element_length
+    zeta_a = vf.static_axial_damping
+    cfac = vf.static_damping
+    cfac_fine = vf.static_damping_fine
+    cfac_current = vf.static_damping_current
+    creep_tol = vf.creep_tolerance * float(sum(sg.length for sg in scene.segments))
+    fictitious = vf.static_fictitious_inertia
+    zeta_c = vf.static_contact_damping
+    cont_steps = vf.static_weight_continuation_steps
 
     kseabed = scene.seabed.stiffness if scene.seabed is not None else 0.0
     stages = mesh_sequence(h_coarse, element_length)
@@ -302,7 +199,7 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
                   + ", length-consistent starting shapes; fictitious inertia "
                   "and damping only, the equilibrium and the out-of-balance force "
                   "(fictitious damping not counted) are unchanged"}
-    fixed_dt = vf.get("static_time_step")
+    fixed_dt = vf.static_time_step
     model = None
     total_steps = 0
     for si, h in enumerate(stages):

@@ -1,16 +1,19 @@
-"""Report of the cost study (:mod:`verification.cost`): Markdown, plots and CSV files."""
+"""Report of the cost study: ``report.md``, the three plots, ``runs.csv`` and
+``values.csv``; and the row of the reports index read back from them."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 
-from .cost import EXTRA_COLUMNS, RUN_COLUMNS, CostStudy, Run, recommendations
-from .cost_fit import (EXPECTED_ORDER, NOISE_MARGIN, ORDER_BAND, PRE_ASYMPTOTIC,
-                       QUANTITIES, QUANTITY_LABEL, family, order_assessment, pareto,
-                       worst_mesh)
-from .report import GENERATED_NOTE, md_table, new_figure, save
+from ..report import GENERATED_NOTE, md_table, new_figure, save
+from .analysis import recommendations
+from .assessment import EXPECTED_ORDER, ORDER_BAND, order_assessment
+from .errors import QUANTITIES, QUANTITY_LABEL, family
+from .fits import NOISE_MARGIN, PRE_ASYMPTOTIC, pareto, worst_mesh
+from .records import EXTRA_COLUMNS, RUN_COLUMNS, CostStudy, Run
 
 
 def _label(r: Run | None) -> str:
@@ -289,9 +292,20 @@ def _plots(st: CostStudy, out: Path) -> None:
 
 
 def write(st: CostStudy, out_dir: str | Path) -> None:
+    """``runs.csv``, ``values.csv``, ``report.md`` and the plots into ``out_dir``."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     st.frame().to_csv(out / "runs.csv", index=False, float_format="%.6g")
     st.values_frame().to_csv(out / "values.csv", index=False, float_format="%.10g")
     _plots(st, out)
     (out / "report.md").write_text(report_markdown(st))
+
+
+def index_row(d: Path):
+    """(cases, worst agreement, verdict) of one scene's cost-study directory."""
+    if not ((d / "runs.csv").exists() and (d / "report.md").exists()):
+        return None
+    df = pd.read_csv(d / "runs.csv")
+    conv = df["converged"].astype(bool).sum() if "converged" in df else len(df)
+    return (f"{len(df)} runs ({conv} converged)",
+            "accuracy vs cost: see the recommendation table", "reported")

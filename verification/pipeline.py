@@ -1,0 +1,110 @@
+"""One way to run a method on a scene, used by every command and study.
+
+:func:`solve_scene` solves a scene with one method. The VFIFE needs both ends fixed in
+space; a scene in a Wang form (touchdown tension, or hang-off height and angle) leaves the
+hang-off point as an output. :func:`vfife_equivalent` is the one conversion every caller
+uses: the BVP solves the scene as given (its own model, inextensible on a rigid seabed by
+default), the hang-off is fixed at that solution's top point, and ``[vfife]
+seabed_length`` (300 m) of line is added to the first segment on an elastic seabed ahead
+of that touchdown, so that the touchdown is free to move (``riser.transform``). That
+fixed-ends scene is the model both methods solve (extensible, elastic seabed). Its arc
+lengths are reported in the scene's own coordinate, from the BVP touchdown: the converted
+scene's s minus the added length (negative s lies on the added line).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+from dataclasses import dataclass
+
+import bvp
+import vfife
+from riser.errors import SolveFailed
+from riser.profile import Profile
+from riser.result import SolveResult
+from riser.scene import Scene
+from riser.transform import fixed_ends_scene
+from vfife.ends import require_vfife_model
+
+METHODS = ("bvp", "vfife")
+
+
+@dataclass(frozen=True)
+class VfifeEquivalent:
+    """The scene the VFIFE solves for a scene, and how to read its results back.
+
+    scene : fixed-ends scene (the given scene when it already has fixed ends).
+    s_shift : [m] to subtract from its arc lengths to get the given scene's s (the line
+        added on the seabed; 0 for a fixed-ends scene).
+    note : one sentence saying how the scene was converted ('' when it was not).
+    paper : the BVP result of the given scene the conversion started from (None for
+        fixed ends).
+    seconds : wall time of the conversion [s] (the BVP solve).
+    """
+
+    scene: Scene
+    s_shift: float = 0.0
+    note: str = ""
+    paper: SolveResult | None = None
+    seconds: float = 0.0
+
+
+def vfife_equivalent(scene: Scene, paper: SolveResult | None = None) -> VfifeEquivalent:
+    """The fixed-ends equivalent of ``scene`` (see the module docstring). ``paper``: a
+    converged BVP result of ``scene`` to start from (solved here when None). Raises
+    :class:`SolveFailed` when that BVP does not converge."""
+    if scene.ends.kind == "fixed":
+        return VfifeEquivalent(scene)
+    t0 = time.perf_counter()
+    if paper is None:
+        paper = bvp.solve(scene)
+    if not paper.converged:
+        raise SolveFailed("bvp", paper.status, f"cannot convert {scene.name} to fixed ends: "
+                          f"the BVP of its own model did not converge ({paper.message})")
+    length = scene.vfife.seabed_length
+    sm = paper.summary()
+    fixed = fixed_ends_scene(scene, (sm["hang_off_x"], sm["hang_off_height"]), length,
+                             first_segment_length=sm["first_segment_suspended_length"])
+    model = ", ".join(f"{k} {v}" for k, v in paper.model.items() if k != "seabed_stiffness")
+    note = (f"{scene.ends.kind} ends converted to fixed ends from the BVP solution of the "
+            f"scene's own model ({model}): hang-off fixed at that top point "
+            f"({sm['hang_off_x']:.3f}, {sm['hang_off_height']:.3f}) m, anchor at x = "
+            f"{-length:g} m on a seabed of stiffness {fixed.seabed.stiffness:.3g} N/m2, i.e. "
+            f"{length:g} m of line added to the first segment; arc lengths s are measured "
+            f"from that BVP touchdown (the added line has s < 0)")
+    return VfifeEquivalent(fixed, float(length), note, paper, time.perf_counter() - t0)
+
+
+def shifted(profile: Profile | None, s_shift: float) -> Profile | None:
+    """``profile`` with ``s_shift`` [m] subtracted from its arc lengths."""
+    if profile is None or not s_shift:
+        return profile
+    return dataclasses.replace(profile, s=profile.s - s_shift,
+                               tdp_s=None if profile.tdp_s is None else profile.tdp_s - s_shift)
+
+
+def solve_scene(scene: Scene, method: str, *, tolerance: float | None = None,
+                element_length: float | None = None, progress=None) -> SolveResult:
+    """Solve ``scene`` with ``method`` ('bvp' or 'vfife'). ``tolerance`` applies to the
+    BVP (solve_bvp tolerance), ``element_length`` [m] to the VFIFE; each overrides the
+    scene's setting and is validated like it. A VFIFE run of a Wang-form scene solves its
+    :func:`vfife_equivalent`, says so in ``info['ends_conversion']`` and reports arc
+    lengths in the scene's own coordinate.
+
+    Raises SceneError (bad input), UnsupportedSceneError (refused before solving) and
+    SolveFailed (the BVP a conversion needs did not converge); every other outcome is in
+    the result's status."""
+    if method == "bvp":
+        return bvp.solve(scene, tolerance=tolerance)
+    if method != "vfife":
+        raise ValueError(f"method must be one of {METHODS}, got {method!r}")
+    if scene.ends.kind != "fixed":
+        require_vfife_model(scene)
+    eq = vfife_equivalent(scene)
+    res = vfife.solve(eq.scene, element_length=element_length, progress=progress)
+    if eq.note:
+        res.info["ends_conversion"] = eq.note
+        res.scene = scene.name
+        res.profile = shifted(res.profile, eq.s_shift)
+    return res

@@ -1,0 +1,43 @@
+"""What a study declares so that ``reproduce`` can run it and ``reports/README.md`` can
+index it (the registry is :mod:`verification.studies`).
+
+A study writes into ``reports/<name>/``. Its units of work are independent pieces that
+each write their own files (one per scene for the comparison and the cost study, a single
+unit ``None`` for a paper reproduction); ``reproduce all --jobs N`` hands the units of every
+study to N worker processes, longest first.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable
+
+#: an index row: (report directory, cases, worst agreement, verdict)
+IndexRow = tuple[Path, str, str, str]
+
+
+@dataclass(frozen=True)
+class Study:
+    """A study of the registry.
+
+    name : ``riser-verify reproduce NAME`` and the report directory ``reports/NAME``.
+    units : the units of work (scene names, or ``(None,)`` for a single unit).
+    run : ``run(unit, out_dir, note) -> str`` runs one unit into the study's directory
+        ``out_dir`` and returns a line for the log; ``note`` is a sentence to put in a report
+        whose timings were measured next to other work ('' when run alone).
+    index_row : ``index_row(report_dir) -> (cases, worst agreement, verdict) | None`` reads
+        one report directory of the study back from its CSV files (None: not a report of
+        this study).
+    seconds : measured wall time [s] of each unit in ``reproduce all`` on 2 processes of a
+        2-core machine, for the longest-first schedule (a unit not listed counts 15 s).
+    """
+
+    name: str
+    units: tuple
+    run: Callable[[str | None, Path, str], str]
+    index_row: Callable[[Path], tuple[str, str, str] | None]
+    seconds: dict = field(default_factory=dict)
+
+    def unit_seconds(self, unit) -> float:
+        return self.seconds.get(unit, 15.0)
