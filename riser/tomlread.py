@@ -8,6 +8,7 @@ file and the key path (``segments[2].length``) and raise :class:`SceneError`.
 from __future__ import annotations
 
 import math
+import re
 from typing import Any
 
 from .errors import SceneError
@@ -83,7 +84,6 @@ class Table:
         if choices is not None and value not in choices:
             raise self.error(name, f"must be one of {', '.join(repr(c) for c in choices)}, got {value!r}")
         if pattern is not None:
-            import re
             if not re.fullmatch(pattern, value):
                 raise self.error(name, f"must match {pattern}, got {value!r}")
         return value
