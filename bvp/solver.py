@@ -88,8 +88,8 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
     (out-of-plane current).
     """
     t0 = time.perf_counter()
-    overrides = {"tolerance": tolerance, "max_nodes": max_nodes, "initial_nodes": initial_nodes}
-    settings = scene.bvp.replace(**{k: v for k, v in overrides.items() if v is not None})
+    settings = scene.bvp.override(tolerance=tolerance, max_nodes=max_nodes,
+                                  initial_nodes=initial_nodes)
     if scene.current is not None and not scene.current.is_planar:
         raise UnsupportedSceneError(
             f"{scene.source}: environment.current.heading_deg: {scene.current.heading_deg:g} deg "

@@ -47,6 +47,11 @@ class _Settings:
                              f"(known: {', '.join(f.name for f in dataclasses.fields(self))})")
         return dataclasses.replace(self, **changes)
 
+    def override(self, **values: Any):
+        """A validated copy with the settings given a value (``None``: keep this one's),
+        e.g. the overrides a caller passes to a solver."""
+        return self.replace(**{k: v for k, v in values.items() if v is not None})
+
     @classmethod
     def read(cls, t: Table | None):
         """The settings of a scene table (``None``: all defaults); raises SceneError."""

@@ -10,6 +10,7 @@ from __future__ import annotations
 import pytest
 
 import bvp
+from verification import cli
 from verification.catalog import resolve
 
 
@@ -28,3 +29,14 @@ def wang_bvp(wang_scene):
     res = bvp.solve(wang_scene)
     assert res.converged, res.message
     return res
+
+
+@pytest.fixture
+def run_cli(capsys):
+    """``run_cli(argv)`` runs ``riser-verify ARGV`` in this process and returns (exit code,
+    stdout, stderr)."""
+    def run(argv):
+        code = cli.main(argv)
+        cap = capsys.readouterr()
+        return code, cap.out, cap.err
+    return run

@@ -16,7 +16,6 @@ import pytest
 from riser.errors import SceneError
 from riser.scene_file import load_scene, parse_scene
 from riser.sections import segment_properties
-from verification import cli
 from verification.catalog import builtin_paths
 
 SRC = "scene.toml"
@@ -559,12 +558,6 @@ def test_baselines_round_trip_through_dumper():
 
 
 # ------------------------------------------------------------------ 3. command line
-def run_cli(capsys, args):
-    code = cli.main(args)
-    captured = capsys.readouterr()
-    return code, captured.out, captured.err
-
-
 @pytest.mark.parametrize("old,new,expected", [
     pytest.param("length = 1690.0", "length = -5", "error: scene.toml: segments[2].length: must be > 0 m, got -5",
                  id="negative-length"),
@@ -574,12 +567,12 @@ def run_cli(capsys, args):
                  "error: scene.toml: environment.gravty: unknown key", id="unknown-key"),
     pytest.param("[ends]", "[ends", "error: scene.toml: not valid TOML (", id="invalid-toml"),
 ])
-def test_cli_bad_scene_exit_2(tmp_path, capsys, old, new, expected):
+def test_cli_bad_scene_exit_2(tmp_path, old, new, expected, run_cli):
     # protects: a bad scene file -> exit 2 and exactly one "error: scene.toml: ..." line, no traceback
     scene = tmp_path / "scene.toml"
     scene.write_text(mutate(WANG, old, new))
     out_dir = tmp_path / "out"
-    code, out, err = run_cli(capsys, ["solve", str(scene), "--out", str(out_dir)])
+    code, out, err = run_cli(["solve", str(scene), "--out", str(out_dir)])
     assert code == 2
     lines = err.splitlines()
     assert len(lines) == 1 and lines[0].startswith(expected), err
@@ -587,29 +580,29 @@ def test_cli_bad_scene_exit_2(tmp_path, capsys, old, new, expected):
     assert not out_dir.exists()
 
 
-def test_cli_missing_file_exit_2(tmp_path, capsys):
+def test_cli_missing_file_exit_2(tmp_path, run_cli):
     # protects: a scene path that does not exist -> exit 2 with one error line
-    code, out, err = run_cli(capsys, ["solve", str(tmp_path / "nope.toml"), "--out", str(tmp_path / "o")])
+    code, out, err = run_cli(["solve", str(tmp_path / "nope.toml"), "--out", str(tmp_path / "o")])
     assert code == 2
     lines = err.splitlines()
     assert len(lines) == 1 and lines[0].startswith("error: ") and "nope.toml" in lines[0], err
     assert "cannot read file" in lines[0]
 
 
-def test_cli_unknown_builtin_exit_2(tmp_path, capsys):
+def test_cli_unknown_builtin_exit_2(tmp_path, run_cli):
     # protects: a name that is neither a file nor a built-in scene -> exit 2 with one error line
-    code, out, err = run_cli(capsys, ["solve", "no-such-scene", "--out", str(tmp_path / "o")])
+    code, out, err = run_cli(["solve", "no-such-scene", "--out", str(tmp_path / "o")])
     assert code == 2
     lines = err.splitlines()
     assert len(lines) == 1 and lines[0].startswith("error: no-such-scene: no such file"), err
 
 
-def test_cli_out_of_plane_current_bvp_exit_2(tmp_path, capsys):
+def test_cli_out_of_plane_current_bvp_exit_2(tmp_path, run_cli):
     # protects: bvp refuses an out-of-plane current with exit 2 and says it is planar only
     scene = tmp_path / "scene.toml"
     scene.write_text(mutate(WANG, "[line_types.steel]", "[environment.current]\nheights = [0.0]\n"
                             "speeds = [0.5]\nheading_deg = 90.0\n\n[line_types.steel]"))
-    code, out, err = run_cli(capsys, ["solve", str(scene), "--method", "bvp", "--out", str(tmp_path / "o")])
+    code, out, err = run_cli(["solve", str(scene), "--method", "bvp", "--out", str(tmp_path / "o")])
     assert code == 2
     lines = err.splitlines()
     assert len(lines) == 1 and lines[0].startswith("error: scene.toml: "), err

@@ -81,12 +81,8 @@ def run_one(name: str, method: str) -> tuple[dict, object]:
     if res is None:
         return row, None
     row["message"] = res.message
-    if not res.converged:
-        if res.profile is not None and not res.profile.is_finite():
-            row["outcome"] = "SILENT FAILURE"
-            row["message"] += " (and returned a non-finite profile)"
-        else:
-            row["outcome"] = OUTCOME[res.status]
+    if not res.converged:            # a failed result holds no profile (riser.result)
+        row["outcome"] = OUTCOME[res.status]
         return row, None
     problems = []
     if res.profile is None or not res.profile.is_finite():

@@ -147,8 +147,7 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
     ``wall_time_s`` excludes Numba compilation (reported as info['compile_s']).
     """
     require_fixed_ends(scene)
-    overrides = {"element_length": element_length, "static_tolerance": tolerance}
-    vf = scene.vfife.replace(**{k: v for k, v in overrides.items() if v is not None})
+    vf = scene.vfife.override(element_length=element_length, static_tolerance=tolerance)
     h, tol = vf.element_length, vf.static_tolerance
     planar = bool(scene.is_planar)
     if vf.clamped_ends and not planar:
