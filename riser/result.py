@@ -15,6 +15,9 @@ from pathlib import Path
 
 from .profile import Profile, summarize, write_json
 
+#: the methods that fill this contract (``SolveResult.method``)
+METHODS = ("bvp", "vfife")
+
 
 class Status(str, Enum):
     """How a run ended (the value is written to summary.json as ``status``)."""

@@ -15,7 +15,7 @@ from riser.errors import SceneError
 from riser.result import SolveResult, Status
 from riser.scene_file import parse_scene
 from riser.settings import BVPSettings, VFIFESettings
-from verification import cli, stress
+from verification import pipeline, stress
 from verification.catalog import resolve
 
 # a small fixed-ends line: 300 m of 86.8 kg/m steel pipe hanging between (0, 0) and
@@ -35,12 +35,6 @@ length = 300.0
 anchor = [0.0, 0.0]
 hang_off = [200.0, 150.0]
 """
-
-
-def run_cli(capsys, argv):
-    code = cli.main(argv)
-    cap = capsys.readouterr()
-    return code, cap.out, cap.err
 
 
 # ------------------------------------------------------------------------- statuses
@@ -106,9 +100,9 @@ def test_stress_reads_the_status_not_the_message(monkeypatch):
 
 
 # ------------------------------------------------------------------------- the CLI
-def test_cli_element_length_override_is_validated(tmp_path, capsys):
+def test_cli_element_length_override_is_validated(tmp_path, run_cli):
     # the CLI option goes through the scene key's range: 5000 m is refused, exit 2, one line
-    code, out, err = run_cli(capsys, ["solve", "scr-steel", "--method", "vfife",
+    code, out, err = run_cli(["solve", "scr-steel", "--method", "vfife",
                                       "--element-length", "5000", "--out",
                                       str(tmp_path / "o")])
     assert code == 2
@@ -116,21 +110,21 @@ def test_cli_element_length_override_is_validated(tmp_path, capsys):
     assert len(lines) == 1 and "vfife.element_length: must be <= 1000 m" in lines[0], err
 
 
-def test_cli_unexpected_error_is_one_line(monkeypatch, tmp_path, capsys):
+def test_cli_unexpected_error_is_one_line(monkeypatch, tmp_path, run_cli):
     def boom(*a, **k):
         raise ZeroDivisionError("division by zero")
-    monkeypatch.setattr(cli, "solve_scene", boom)
-    code, out, err = run_cli(capsys, ["solve", "scr-steel", "--out", str(tmp_path / "o")])
+    monkeypatch.setattr(pipeline, "solve_scene", boom)
+    code, out, err = run_cli(["solve", "scr-steel", "--out", str(tmp_path / "o")])
     assert code == 1
     lines = err.splitlines()
     assert len(lines) == 1 and lines[0].startswith("error: unexpected ZeroDivisionError")
     assert "Traceback" not in err
 
 
-def test_cli_failed_solve_exits_1_with_its_status(tmp_path, capsys):
+def test_cli_failed_solve_exits_1_with_its_status(tmp_path, run_cli):
     scene = tmp_path / "s.toml"
     scene.write_text(SMALL + "\n[vfife]\nmax_steps = 50\n")
-    code, out, err = run_cli(capsys, ["solve", str(scene), "--method", "vfife",
+    code, out, err = run_cli(["solve", str(scene), "--method", "vfife",
                                       "--element-length", "10", "--out", str(tmp_path / "o")])
     assert code == 1
     assert err.startswith("error: vfife on small: not_converged (") and err.count("\n") == 1
@@ -175,3 +169,9 @@ def test_programmatic_settings_are_validated(change, message):
 def test_bvp_override_is_validated():
     with pytest.raises(SceneError, match=r"bvp\.tolerance: must be <= 0\.1"):
         bvp.solve(parse_scene(SMALL), tolerance=0.5)
+
+
+def test_every_registered_study_declares_its_own_name():
+    # the registry names each study's module; the module's STUDY must answer to that name
+    from verification.studies import STUDIES, study
+    assert [study(n).name for n in STUDIES] == list(STUDIES)

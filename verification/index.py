@@ -6,15 +6,14 @@ from __future__ import annotations
 from pathlib import Path
 
 from .report import GENERATED_NOTE, md_table
-from .studies import STUDIES
+from .studies import STUDIES, study
 
 
 def write_index(reports: Path = Path("reports")) -> Path:
     rows = []
     for d in sorted(p for p in reports.rglob("*") if p.is_dir()):
         rel = d.relative_to(reports)
-        study = STUDIES.get(rel.parts[0])
-        row = study.index_row(d) if study is not None else None
+        row = study(rel.parts[0]).index_row(d) if rel.parts[0] in STUDIES else None
         if row is not None:
             rows.append((f"[{rel}]({rel}/report.md)", *row))
     text = "\n".join([

@@ -22,13 +22,10 @@ import bvp
 import vfife
 from riser.errors import SolveFailed
 from riser.profile import Profile
-from riser.result import SolveResult
+from riser.result import METHODS, SolveResult
 from riser.scene import Scene
 from riser.transform import fixed_ends_scene
 from vfife.ends import require_vfife_model
-
-METHODS = ("bvp", "vfife")
-
 
 @dataclass(frozen=True)
 class VfifeEquivalent:
