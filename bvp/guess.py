@@ -118,9 +118,7 @@ def grounded(w, L, dx, dy):
             Ls[0] = l1s
             return H_for(l1s), 0.0, Ls
         prev = (l1, v)
-    raise BVPFailure("no touchdown found within the first segment for the given anchor and "
-                     "hang_off (the line is too short, too long or the first segment does not "
-                     "reach the seabed): lengthen segments[0] or move the ends")
+    raise BVPFailure(no_touchdown_reason(w, L, dx, dy))
 
 
 def free_hanging(w, L, dx, dy, EA=None):
@@ -129,8 +127,8 @@ def free_hanging(w, L, dx, dy, EA=None):
     W = float(np.sum(np.abs(w) * L)) or 1.0
     total = float(np.sum(w * L))
     if EA is None and float(np.sum(L)) <= math.hypot(dx, dy):
-        raise BVPFailure("the line is not longer than the distance between its ends: no "
-                         "inextensible catenary joins them (taut)")
+        raise BVPFailure(f"the line is too short: {span_words(L, dx, dy)}, and an "
+                         "inextensible line cannot stretch to join them")
 
     def resid(z):
         H = math.exp(z[0]) * W
@@ -144,6 +142,89 @@ def free_hanging(w, L, dx, dy, EA=None):
         if best is None or r.cost < best.cost:
             best = r
     if best.cost > 1e-16:
-        raise BVPFailure("no free-hanging catenary joins the anchor and the hang-off "
-                         "(line too short for the span?)")
+        short = float(np.sum(L)) <= math.hypot(dx, dy)
+        raise BVPFailure(f"no free-hanging catenary found for {span_words(L, dx, dy)}"
+                         + (" (the line is too short: it must stretch to join them)" if short
+                            else " (the starting-guess search did not converge)"))
     return math.exp(best.x[0]) * W, best.x[1] * W, L.copy()
+
+
+# ------------------------------------------------------------- why a span has no form
+def metres(x: float) -> str:
+    """A length [m] for a message: thousands separated, 3 significant digits below 100 m."""
+    return f"{x:,.0f} m" if abs(x) >= 100.0 else f"{x:.3g} m"
+
+
+def span_words(L, dx: float, dy: float) -> str:
+    """'2,000 m of line between ends 1,803 m apart (1,500 m across, 1,000 m up)'."""
+    return (f"{metres(float(np.sum(L)))} of line between ends {metres(math.hypot(dx, dy))} apart "
+            f"({metres(dx)} across, {metres(dy)} up)")
+
+
+def too_long_for_seabed(w, L, anchor, hang_off) -> str:
+    """Why a line heavier than water everywhere (w > 0 [N/m], lengths L [m]) is too long
+    for fixed ends ``anchor``, ``hang_off`` (x, y) [m] above a seabed at y = 0, else ''.
+
+    Such a line is convex where it hangs and straight where it lies (frictionless seabed,
+    tension > 0), so it never turns back: it holds less than the path down to the seabed,
+    along it and up to the hang-off, ya + dx + yh (reached only with vertical hanging
+    parts). A longer line would have to fold back on itself: no equilibrium of the BVP's
+    forms (one contact zone, x increasing along the line) exists. Stretch only adds length,
+    so the unstretched length decides for an extensible line too.
+    """
+    w, L = np.asarray(w, float), np.asarray(L, float)
+    if not np.all(w > 0.0):
+        return ""      # a buoyant section can hold more line in a wave: no simple bound
+    (xa, ya), (xh, yh) = anchor, hang_off
+    if float(np.sum(L)) < ya + (xh - xa) + yh:
+        return ""
+    return (f"the line is too long for the span: {span_words(L, xh - xa, yh - ya)}; without "
+            f"folding back on itself {fold_back(float(np.sum(L)), anchor, hang_off)}: no "
+            "static equilibrium of this form; shorten the line or move the hang-off away from "
+            "the anchor")
+
+
+def fold_back(total: float, anchor, hang_off) -> str:
+    """'it holds less than 2,500 m (1,500 m along the seabed, then 1,000 m straight up), so
+    37,500 m would have to fold back' for ``total`` [m] of line between the ends [m]."""
+    (xa, ya), (xh, yh) = anchor, hang_off
+    most = ya + (xh - xa) + yh
+    path = (f"down {metres(ya)} to the seabed, {metres(xh - xa)} along it" if ya > 0.0
+            else f"{metres(xh - xa)} along the seabed") + f", then {metres(yh)} straight up"
+    excess = (f", so {metres(total - most)} would have to fold back" if total - most >= 1.0
+              else "")
+    return f"it holds less than {metres(most)} ({path}){excess}"
+
+
+def no_touchdown_reason(w, L, dx: float, dy: float) -> str:
+    """Why no catenary with its touchdown in the first segment (grounded form) joins an
+    anchor on the seabed to a hang-off at (dx, dy) [m] from it: too short, too long, or
+    the touchdown beyond segments[0] (decided from the lengths and the free catenary)."""
+    L = np.asarray(L, float)
+    long_ = too_long_for_seabed(w, L, (0.0, 0.0), (dx, dy))
+    if long_:
+        return long_
+    if float(np.sum(L)) <= math.hypot(dx, dy):
+        return (f"no touchdown: the line is too short, no longer than the distance between "
+                f"its ends ({span_words(L, dx, dy)})")
+    try:
+        V0 = free_hanging(w, L, dx, dy)[1]
+    except BVPFailure:
+        V0 = None
+    if V0 is not None and V0 >= 0.0:
+        return (f"no touchdown: the line is too short to reach the seabed ahead of the anchor "
+                f"({span_words(L, dx, dy)}): hanging free, it rises from the anchor")
+    if len(L) == 1:
+        return (f"no touchdown found for {span_words(L, dx, dy)}, though it is longer than a "
+                "line hanging free from the anchor (the search for the grounded catenary "
+                "failed)")
+    return f"{span_words(L, dx, dy)}: " + touchdown_beyond_first(float(L[0]))
+
+
+def touchdown_beyond_first(first_length: float) -> str:
+    """The reason of the rigid-seabed fixed-ends form when the line is too long to hang
+    free from the anchor but has no touchdown within its first segment [m]."""
+    return ("the line is longer than a line hanging free from the anchor, so part of it lies "
+            f"on the seabed, but no touchdown was found within segments[0] "
+            f"({metres(first_length)}), where this form (rigid seabed) puts it: lengthen "
+            "segments[0] or use an elastic seabed")

@@ -11,7 +11,7 @@ from scipy.optimize import brentq
 from riser.profile import Profile
 
 from .equations import IF, IM, IT, ITH, IX, IY, NSTATE, BeamModel
-from .guess import BVPFailure
+from .guess import BVPFailure, touchdown_beyond_first
 
 
 def build_profile(prob, sol, water_depth: float | None) -> tuple[Profile, dict]:
@@ -48,10 +48,12 @@ def build_profile(prob, sol, water_depth: float | None) -> tuple[Profile, dict]:
     if prob.form == "fixed_lifted":
         checks["lifted_off_anchor"] = True
         if c["theta"][0] < -1e-6:
+            # too long for a line hanging free from the anchor (a line too long for the
+            # span altogether is refused before solving: bvp.strategy.hopeless_span)
             raise BVPFailure(
-                "the line is too short to reach the seabed ahead of the anchor and would "
-                f"leave the anchor downwards (angle {math.degrees(c['theta'][0]):.2f} deg): "
-                "no touchdown in the first segment")
+                "the line would leave the anchor downwards, into the rigid seabed (angle "
+                f"{math.degrees(c['theta'][0]):.2f} deg): "
+                + touchdown_beyond_first(prob.first_total))
     if prob.form == "fixed_seabed" and grounded > 0.0:
         c = _with_grounded_part(prob, model, c, grounded)
     # joints are evaluated from both sides; drop stations closer than 1 um

@@ -34,6 +34,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from riser import validity
 from riser.errors import UnsupportedSceneError
 from riser.result import SolveResult, Status
 from riser.scene import Scene
@@ -45,11 +46,8 @@ from .equations import IM, IT, ITH, IX, IY, NSTATE, BeamModel
 from .guess import BVPFailure
 from .mesh import clustered_mesh
 from .output import build_profile, grounded_drag
-from .strategy import good, solve_with_continuation
-
-#: strain T/EA above which a converged solution carries a warning: the linear axial model
-#: is a small-strain model (synthetic ropes stretch a few per cent, steel yields at ~0.2 %)
-STRAIN_WARNING = 0.01
+from .strategy import (good, hopeless_span, hopeless_start, second_contact,
+                       solve_with_continuation)
 
 
 @dataclass
@@ -99,9 +97,9 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
     info = {"tolerance": settings.tolerance}
     warnings = []
     if scene.dynamics is not None:
-        warnings.append("bvp solves statics only: [dynamics] ignored")
+        warnings.append("ignored_input: bvp solves statics only: [dynamics] ignored")
     if scene.seabed is not None and scene.seabed.friction > 0.0:
-        warnings.append(f"bvp seabed is frictionless: seabed.friction = "
+        warnings.append(f"ignored_input: bvp seabed is frictionless: seabed.friction = "
                         f"{scene.seabed.friction:g} ignored")
 
     def result(status: Status, msg: str, profile=None) -> SolveResult:
@@ -110,12 +108,20 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
                            info=info)
 
     tau0 = clustered_mesh(settings.initial_nodes)
+    hopeless = hopeless_span(scene)        # give up early: no equilibrium of these forms
+    if hopeless:
+        return result(Status.NO_EQUILIBRIUM, hopeless)
     split_tried = ""
     for split in (True, False):
         try:
             prob = _build_problem(scene, split)
         except BVPFailure as exc:
             return result(Status.NOT_CONVERGED, str(exc))
+        early = hopeless_start(scene, prob, tau0)
+        if early is not None and early[0] is Status.REFUSED:
+            raise UnsupportedSceneError(f"{scene.source}: bvp refused: {early[1]}")
+        if early is not None:
+            return result(*early)
         sol, how, failure = solve_with_continuation(prob, tau0, settings, continuation)
         if prob.form == "fixed_liftoff" and sol is not None and good(sol, prob):
             # the contact zone must be in contact (y <= 0 up to 1 % of the sink depth w/k),
@@ -141,12 +147,19 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
     except BVPFailure as exc:
         return result(Status.NOT_CONVERGED, str(exc))
     info.update(checks)
-    if checks["max_strain"] > STRAIN_WARNING:
-        warnings.append(
-            f"largest axial strain T/EA = {100 * checks['max_strain']:.3g} %: beyond the small "
-            f"strains ({100 * STRAIN_WARNING:g} %) of a linear EA (a steel pipe yields at "
-            "~0.2 %); check the line length and axial_stiffness")
-    return result(Status.CONVERGED, f"converged ({how})", profile)
+    bad = validity.nonfinite(profile)
+    if bad:
+        return result(Status.DIVERGED, bad)
+    message = f"converged ({how})"
+    lengths = [g.length for g in scene.segments]
+    if scene.ends.kind == "hang_off_angle":
+        lengths[0] = checks["first_segment_suspended_length"]
+        note, warn = validity.first_segment_warnings(scene, lengths[0])
+        info["first_segment_length_in_file"] = scene.segments[0].length
+        message += "; " + note
+        warnings.extend(warn)
+    warnings.extend(validity.profile_warnings(scene, profile, lengths))
+    return result(Status.CONVERGED, message, profile)
 
 
 def _second_contact(prob: _Problem, tau: np.ndarray) -> str:
@@ -155,15 +168,10 @@ def _second_contact(prob: _Problem, tau: np.ndarray) -> str:
     m = prob.model
     if m.k_seabed <= 0.0 and prob.form not in ("fixed_seabed", "fixed_lifted"):
         return ""
-    y = prob.guess(tau)[IY::NSTATE] * m.scale[IY]          # (segments, nodes)
-    L = m.segment_lengths(prob.guess_p)
-    first = 2 if m.split_first else 1                       # skip the contact zone's piece(s)
-    below = y[first:] < -1.0
-    if not np.any(below):
+    depth, s = second_contact(prob, tau)
+    if depth <= 1.0:
         return ""
-    k, j = np.unravel_index(int(np.argmin(np.where(below, y[first:], np.inf))), below.shape)
-    s = float(np.sum(L[:first + k]) + L[first + k] * tau[j])
-    return (f"; the starting catenary passes {-float(y[first + k, j]):.3g} m below the seabed "
+    return (f"; the starting catenary passes {depth:.3g} m below the seabed "
             f"at s = {s:.1f} m: a second touchdown, which the BVP's start (one contact zone "
             "from the anchor) does not represent")
 

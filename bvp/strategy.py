@@ -1,18 +1,25 @@
 """How the BVP is solved: a cold start from the catenary, and if that fails a continuation
 in a load factor that scales the current speed and the buoyancy (``solve_bvp`` calls with
-a trial node cap; the full cap only where the problem is genuinely fine)."""
+a trial node cap; the full cap only where the problem is genuinely fine); and when it is
+not started at all (:func:`hopeless_span`, :func:`hopeless_start`: milliseconds, where a
+hopeless ``solve_bvp`` run costs up to a minute or more)."""
 
 from __future__ import annotations
 
+import math
 import warnings
 
 import numpy as np
 from scipy.integrate import solve_bvp
 
 from riser.result import Status
+from riser.scene import Scene
+from riser.sections import segment_properties
 from riser.settings import BVPSettings
 
-from .equations import IT, NSTATE
+from .equations import IT, IY, NSTATE
+from .guess import (fold_back, metres, span_words, too_long_for_seabed,
+                    touchdown_beyond_first)
 
 
 def _run(prob, tau: np.ndarray, Y: np.ndarray, p: np.ndarray, settings: BVPSettings):
@@ -108,3 +115,100 @@ def good(sol, prob) -> bool:
         if l1 <= 0.0 or (prob.form != "hang_off_angle" and l1 > prob.first_total * (1 + 1e-9)):
             return False
     return True
+
+
+# ----------------------------------------------------------------- giving up early
+#: forms whose start has one contact zone (or touchdown) at the bottom end only
+ONE_CONTACT_FORMS = ("tdp_tension", "hang_off_angle", "fixed_seabed", "fixed_lifted",
+                     "fixed_liftoff")
+#: a starting catenary deeper than this fraction of the hang-off height [-] below the
+#: seabed, away from the bottom contact, is a second touchdown the BVP's start does not
+#: reach. Measured on hard-buoyancy-loss with the lost section's buoyancy B [N/m] (dip of
+#: the catenary / 500 m, outcome, time on the 2-core machine): B = 600: clear by 3.6 m,
+#: converged, 62 s; 560: 1.2 %, converged (touching the seabed), 268 s; 545: 1.9 %, failed,
+#: 154 s; 530: 2.6 %, failed, 51 s; 515: 3.3 %, failed, 51 s; 500: 3.9 %, failed, 156 s;
+#: 0 (the hard scene): 16 %, failed, 35-50 s. 3 % is 2.5 x the deepest dip seen to
+#: converge; the built-in scenes' catenaries clear the seabed by 39 m or more.
+SECOND_CONTACT_DEPTH = 0.03
+
+
+def hopeless_span(scene: Scene) -> str:
+    """Why a fixed-ends line on a seabed cannot have an equilibrium of the BVP's forms
+    (too long for the span: it would fold back), else ''. Geometry only, before any
+    guess is built."""
+    ends = scene.ends
+    if ends.kind != "fixed" or scene.seabed_model is None:
+        return ""
+    if scene.seabed_model == "rigid" and ends.anchor[1] != 0.0:
+        return ""              # free-hanging form, no contact: see hopeless_start
+    props = segment_properties(scene)
+    return too_long_for_seabed([p.weight for p in props], [p.length for p in props],
+                               ends.anchor, ends.hang_off)
+
+
+def hopeless_start(scene: Scene, prob, tau: np.ndarray) -> tuple[Status, str] | None:
+    """(status, reason) when the starting catenary of ``prob`` shows that solve_bvp cannot
+    end in a valid equilibrium of its form, else None:
+
+    - a free-hanging form (no seabed contact) with a line heavier than water longer than
+      any seabed could hold (:func:`bvp.guess.too_long_for_seabed`): its catenary hangs
+      far below the seabed y = 0 (:attr:`Status.NO_EQUILIBRIUM`);
+    - a one-contact form whose catenary passes below the seabed by more than
+      ``SECOND_CONTACT_DEPTH`` of the hang-off height away from the bottom contact: a
+      second touchdown (:attr:`Status.REFUSED`: the BVP's forms hold one contact zone,
+      from the anchor; an equilibrium with two contacts may exist, which ``--method
+      vfife`` finds).
+    """
+    m = prob.model
+    y = prob.guess(tau)[IY::NSTATE] * m.scale[IY]          # (stacked segments, nodes) [m]
+    L = m.segment_lengths(prob.guess_p)
+    edges = np.concatenate([[0.0], np.cumsum(L)])
+    if prob.form == "fixed_free":
+        # a line no seabed could hold either (too long for the span); a shorter one that
+        # dips below y = 0 is solved and warned about (below_seabed, riser.validity)
+        (xa, ya), (xh, yh) = ends = scene.ends.anchor, scene.ends.hang_off
+        if not too_long_for_seabed(m.w, L, *ends):
+            return None
+        k, j = np.unravel_index(int(np.argmin(y)), y.shape)
+        why = ("the scene has no [seabed]" if scene.seabed is None else
+               "the rigid seabed holds a line only with the anchor on it (y = 0)")
+        return Status.NO_EQUILIBRIUM, (
+            f"the line is too long for the span: {span_words(L, xh - xa, yh - ya)}; as a free "
+            f"catenary it hangs to y = {metres(float(y[k, j]))} (at s = "
+            f"{metres(edges[k] + L[k] * tau[j])}), below the seabed y = 0 (this form has no "
+            f"seabed contact: {why}), and on a seabed {fold_back(float(np.sum(L)), *ends)}: "
+            "no static equilibrium of this form; shorten the line or move the hang-off away "
+            "from the anchor")
+    top = max(float(y[-1, -1]), 1.0)
+    limit = max(1.0, SECOND_CONTACT_DEPTH * top)
+    if prob.form == "fixed_lifted" and float(np.min(y)) < -limit:
+        # no touchdown in the first segment: the free catenary from the anchor dips
+        return Status.NOT_CONVERGED, (
+            f"not solved: hanging free from the anchor, the line would pass "
+            f"{metres(-float(np.min(y)))} below the seabed: "
+            + touchdown_beyond_first(prob.first_total))
+    depth, s = second_contact(prob, tau, y)
+    if prob.form not in ONE_CONTACT_FORMS or depth <= limit:
+        return None
+    return Status.REFUSED, (
+        f"the starting catenary (no bending, no current) passes {depth:.3g} m "
+        f"below the seabed at s = {s:.1f} m, {100 * depth / top:.2g} % of the hang-off "
+        f"height {top:,.0f} m: a second touchdown, which the BVP's start (one contact zone "
+        "from the anchor) does not reach (solve_bvp fails on such starts after a minute or "
+        "more); "
+        "--method vfife solves contact anywhere")
+
+
+def second_contact(prob, tau: np.ndarray, y: np.ndarray | None = None) -> tuple[float, float]:
+    """(depth [m], arc length s [m]) of the deepest point of the starting catenary below
+    the seabed beyond the stacked segment(s) of the bottom contact; (0, nan) if none.
+    ``y``: the guess's heights (stacked segments, nodes) [m] if already sampled."""
+    m = prob.model
+    if y is None:
+        y = prob.guess(tau)[IY::NSTATE] * m.scale[IY]
+    first = 2 if m.split_first else 1                       # skip the contact zone's piece(s)
+    if y.shape[0] <= first or float(np.min(y[first:])) >= 0.0:
+        return 0.0, math.nan
+    L = m.segment_lengths(prob.guess_p)
+    k, j = np.unravel_index(int(np.argmin(y[first:])), y[first:].shape)
+    return -float(y[first + k, j]), float(np.sum(L[:first + k]) + L[first + k] * tau[j])

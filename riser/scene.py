@@ -44,17 +44,23 @@ LIMITS = {
 
 @dataclass(frozen=True)
 class LineType:
-    """Cross-section and material of a pipe.
+    """Cross-section and material of a line: a pipe, a cable, a chain, a jumper.
 
-    Attributes: outer/inner diameter [m]; mass_per_length of the pipe wall [kg/m];
-    axial_stiffness EA [N] (None when not given: only an inextensible model may omit it);
-    bending_stiffness EI [N m2]; torsional_stiffness GJ [N m2];
-    drag_normal, drag_tangential, added_mass [-]; contents_density [kg/m3].
+    Attributes: outer_diameter [m], the displacement (buoyancy) diameter; inner_diameter
+    [m] (None when the section is given by its properties alone: only contents need it);
+    mass_per_length of the line in air, without contents [kg/m]; axial_stiffness EA [N]
+    (None when not given: only an inextensible model may omit it); bending_stiffness EI
+    [N m2]; torsional_stiffness GJ [N m2]; drag_normal, drag_tangential, added_mass [-];
+    contents_density [kg/m3]; hydro_diameter [m], the diameter of drag and added mass
+    (None: the outer diameter); submerged_weight [N/m, positive down], the empty line's
+    weight in water when given (replaces m g - rho_w g pi D^2 / 4); max_strain [-], the
+    axial strain T/EA beyond which a result carries a warning; compression: False for a
+    line that cannot carry effective compression (chain, rope, slack cable).
     """
 
     name: str
     outer_diameter: float
-    inner_diameter: float
+    inner_diameter: float | None
     mass_per_length: float
     axial_stiffness: float | None
     bending_stiffness: float
@@ -63,6 +69,10 @@ class LineType:
     drag_tangential: float = 0.0
     added_mass: float = 1.0
     contents_density: float = 0.0
+    hydro_diameter: float | None = None
+    submerged_weight: float | None = None
+    max_strain: float = 0.01
+    compression: bool = True
 
 
 @dataclass(frozen=True)
@@ -143,7 +153,10 @@ class Ends:
     """Boundary conditions; ``kind`` is one of
 
     - 'tdp_tension': touchdown at the origin with tension ``tdp_tension`` [N], top free;
-    - 'hang_off_angle': hang-off height [m] and angle from horizontal [deg] given;
+    - 'hang_off_angle': hang-off height [m] and angle from the horizontal [deg] given
+      (``hang_off_angle_deg``; the file may give it from the vertical, converted on
+      reading), the first segment's suspended length solved (``first_segment_given`` [m]:
+      its length in the file);
     - 'fixed': anchor and hang-off positions (x, y) [m] given.
     """
 

@@ -20,14 +20,40 @@ from .tomlread import Table
 
 # ---------------------------------------------------------------------- loading
 def load_scene(path: str | Path) -> Scene:
-    """Read and validate a scene file; raise :class:`SceneError` on any problem."""
+    """Read and validate a scene file, UTF-8 TOML text of at most 1 MB (a UTF-8 byte-order
+    mark is accepted); raise :class:`SceneError` on any problem, including a file that is
+    not one: missing, a directory or device, unreadable, binary, UTF-16 or Latin-1."""
     path = Path(path)
-    source = path.name
+    where, limit = str(path), 1_000_000
     try:
-        text = path.read_text(encoding="utf-8")
+        if path.is_dir():
+            raise SceneError(where, "", "is a directory, not a scene file (a .toml file)")
+        if path.exists() and not path.is_file():
+            raise SceneError(where, "", "is not a regular file (a scene is a .toml file)")
+        with path.open("rb") as fh:
+            data = fh.read(limit + 1)
     except OSError as exc:
-        raise SceneError(str(path), "", f"cannot read file ({exc.strerror or exc})") from None
-    return parse_scene(text, source)
+        raise SceneError(where, "", f"cannot read file ({exc.strerror or exc})") from None
+    kinds = {b"\x89PNG": "a PNG image", b"PK\x03\x04": "a zip archive", b"%PDF": "a PDF file",
+             b"\x1f\x8b": "a gzip archive", b"\x7fELF": "an executable", b"\xff\xd8\xff":
+             "a JPEG image", b"\xff\xfe\x00\x00": "UTF-32 text", b"\x00\x00\xfe\xff":
+             "UTF-32 text", b"\xff\xfe": "UTF-16 text", b"\xfe\xff": "UTF-16 text"}
+    kind = next((k for m, k in kinds.items() if data.startswith(m)), None)
+    if kind is None and b"\x00" in data:
+        kind = "binary data or UTF-16 text (it holds NUL bytes)"
+    if kind is not None:
+        raise SceneError(where, "", f"is {kind}, not a scene: a scene is TOML text in UTF-8"
+                         + (" (save it as UTF-8)" if "text" in kind else ""))
+    if len(data) > limit:
+        raise SceneError(where, "", f"is larger than {limit // 1_000_000} MB, too large for "
+                         "a scene file (TOML text of a few kB)")
+    try:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        line = data[:exc.start].count(b"\n") + 1
+        raise SceneError(where, "", f"is not UTF-8 text (byte 0x{data[exc.start]:02x} on line "
+                         f"{line}; Latin-1 or Windows-1252?): save it as UTF-8") from None
+    return parse_scene(text, path.name)
 
 
 def parse_scene(text: str, source: str = "<scene>") -> Scene:
@@ -113,29 +139,31 @@ def _read_current(t: Table) -> Current:
 
 
 def _read_line_type(t: Table, name: str) -> LineType:
+    """A line type from its section properties (OD, mass per length, EA, EI: a cable, a
+    chain, a flexible pipe) or from its wall and material (a steel pipe)."""
     D = t.number("outer_diameter", gt=0.0, le=LIMITS["diameter"], unit="m")
-    if t.has("wall_thickness") and t.has("inner_diameter"):
-        raise t.error("inner_diameter", "give either wall_thickness or inner_diameter, not both")
-    if t.has("inner_diameter"):
-        d = t.number("inner_diameter", ge=0.0, lt=D, unit="m")
-    else:
-        wt = t.number("wall_thickness", gt=0.0, unit="m")
-        if wt > D / 2:
-            raise t.error("wall_thickness", f"must be <= the radius {D / 2:g} m, got {wt:g}")
-        d = D - 2.0 * wt
-    area = math.pi / 4.0 * (D * D - d * d)
-    inertia = math.pi / 64.0 * (D ** 4 - d ** 4)
-
+    d = _read_bore(t, D)
+    wall = "wall_thickness or inner_diameter (the wall's area)"
     if t.has("density") and t.has("mass_per_length"):
         raise t.error("mass_per_length", "give either density or mass_per_length, not both")
+    if d is None and t.has("density"):
+        raise t.error("density", f"needs {wall}; give mass_per_length [kg/m] instead")
+    if d is None and not t.has("mass_per_length"):
+        raise t.error("mass_per_length", f"required: give it [kg/m] (with axial_stiffness and "
+                      f"bending_stiffness), or {wall} with density")
     if t.has("mass_per_length"):
         mass = t.number("mass_per_length", gt=0.0, le=LIMITS["mass_per_length"], unit="kg/m")
     else:
         rho = t.number("density", gt=0.0, le=LIMITS["density"], unit="kg/m3")
-        mass = rho * area
+        mass = rho * math.pi / 4.0 * (D * D - d * d)
 
     lo, hi = LIMITS["youngs_modulus"]
     E = t.number("youngs_modulus", None, ge=lo, le=hi, unit="Pa")
+    if E is not None and d is None:
+        raise t.error("youngs_modulus", f"needs {wall}; give axial_stiffness [N] and "
+                      "bending_stiffness [N m2] instead")
+    area = 0.0 if d is None else math.pi / 4.0 * (D * D - d * d)
+    inertia = 0.0 if d is None else math.pi / 64.0 * (D ** 4 - d ** 4)
     smax = LIMITS["stiffness"]
     if E is None and not t.has("bending_stiffness"):
         raise t.error("bending_stiffness", "required when youngs_modulus is not given")
@@ -145,23 +173,45 @@ def _read_line_type(t: Table, name: str) -> LineType:
                   unit="N m2")
     poisson = t.number("poisson_ratio", 0.3, ge=0.0, le=0.5)
     G = t.number("shear_modulus", None, gt=0.0, le=hi, unit="Pa")
-    if G is not None:
-        gj_default = G * 2.0 * inertia
-    else:
-        # GJ = G * 2I with G = E / (2 (1 + nu)); without E, use EI / (1 + nu).
-        gj_default = EI / (1.0 + poisson)
+    if G is not None and d is None:
+        raise t.error("shear_modulus", f"needs {wall}; give torsional_stiffness [N m2] instead")
+    # GJ = G * 2I; with G = E / (2 (1 + nu)) that is EI / (1 + nu)
+    gj_default = G * 2.0 * inertia if G is not None else EI / (1.0 + poisson)
     GJ = t.number("torsional_stiffness", gj_default, gt=0.0, le=smax, unit="N m2")
+    contents = t.number("contents_density", 0.0, ge=0.0, le=LIMITS["density"], unit="kg/m3")
+    if contents > 0.0 and d is None:
+        raise t.error("contents_density", f"needs inner_diameter or wall_thickness (the bore "
+                      "that holds the contents)")
+    L = LIMITS["line_load"]
     lt = LineType(
         name=name, outer_diameter=D, inner_diameter=d, mass_per_length=mass,
         axial_stiffness=EA, bending_stiffness=EI, torsional_stiffness=GJ,
         drag_normal=t.number("drag_normal", 1.0, ge=0.0, le=10.0),
         drag_tangential=t.number("drag_tangential", 0.0, ge=0.0, le=10.0),
         added_mass=t.number("added_mass", 1.0, ge=0.0, le=10.0),
-        contents_density=t.number("contents_density", 0.0, ge=0.0, le=LIMITS["density"],
-                                  unit="kg/m3"),
+        contents_density=contents,
+        hydro_diameter=t.number("hydro_diameter", None, gt=0.0, le=LIMITS["diameter"], unit="m"),
+        submerged_weight=t.number("submerged_weight", None, ge=-L, le=L, unit="N/m"),
+        max_strain=t.number("max_strain", 0.01, gt=0.0, le=1.0),
+        compression=t.boolean("compression", True),
     )
     t.finish()
     return lt
+
+
+def _read_bore(t: Table, D: float) -> float | None:
+    """The inner diameter [m] from wall_thickness or inner_diameter; None when neither is
+    given (a section given by its properties)."""
+    if t.has("wall_thickness") and t.has("inner_diameter"):
+        raise t.error("inner_diameter", "give either wall_thickness or inner_diameter, not both")
+    if t.has("inner_diameter"):
+        return t.number("inner_diameter", ge=0.0, lt=D, unit="m")
+    if t.has("wall_thickness"):
+        wt = t.number("wall_thickness", gt=0.0, unit="m")
+        if wt > D / 2:
+            raise t.error("wall_thickness", f"must be <= the radius {D / 2:g} m, got {wt:g}")
+        return D - 2.0 * wt
+    return None
 
 
 def _read_segment(t: Table, line_types: dict[str, LineType]) -> Segment:
@@ -182,17 +232,25 @@ def _read_segment(t: Table, line_types: dict[str, LineType]) -> Segment:
     return seg
 
 
+#: the hang-off angle of form (b), by the reference it is measured from; the key must
+#: say which (a riser's hang-off angle is usually quoted from the vertical)
+ANGLE_KEYS = ("hang_off_angle_from_horizontal_deg", "hang_off_angle_from_vertical_deg")
+
 _END_FORMS = {
     "tdp_tension": ("tdp_tension",),
-    "hang_off_angle": ("hang_off_height", "hang_off_angle_deg"),
+    "hang_off_angle": ("hang_off_height", *ANGLE_KEYS),
     "fixed": ("anchor", "hang_off"),
 }
 
 
 def _read_ends(t: Table) -> Ends:
+    if t.has("hang_off_angle_deg"):
+        raise t.error("hang_off_angle_deg", "ambiguous: say which angle it is, "
+                      "hang_off_angle_from_horizontal_deg or hang_off_angle_from_vertical_deg")
     present = [kind for kind, keys in _END_FORMS.items() if any(t.has(k) for k in keys)]
     if not present:
-        raise t.error("", "give one of: tdp_tension; hang_off_height + hang_off_angle_deg; "
+        raise t.error("", "give one of: tdp_tension; hang_off_height + "
+                      "hang_off_angle_from_horizontal_deg (or _from_vertical_deg); "
                       "anchor + hang_off")
     if len(present) > 1:
         keys = [k for kind in present for k in _END_FORMS[kind] if t.has(k)]
@@ -203,9 +261,8 @@ def _read_ends(t: Table) -> Ends:
     if kind == "tdp_tension":
         ends = Ends(kind, tdp_tension=t.number("tdp_tension", gt=0.0, le=LIMITS["tension"], unit="N"))
     elif kind == "hang_off_angle":
-        ends = Ends(kind,
-                    hang_off_height=t.number("hang_off_height", gt=0.0, le=C, unit="m"),
-                    hang_off_angle_deg=t.number("hang_off_angle_deg", gt=0.0, le=90.0, unit="deg"))
+        height = t.number("hang_off_height", gt=0.0, le=C, unit="m")
+        ends = Ends(kind, hang_off_height=height, hang_off_angle_deg=_read_angle(t))
     else:
         anchor = t.numbers("anchor", length=2, ge=-C, le=C, unit="m")
         hang = t.numbers("hang_off", length=2, ge=-C, le=C, unit="m")
@@ -220,6 +277,18 @@ def _read_ends(t: Table) -> Ends:
         ends = Ends(kind, anchor=anchor, hang_off=hang)
     t.finish()
     return ends
+
+
+def _read_angle(t: Table) -> float:
+    """The hang-off angle from the horizontal [deg], given from either reference."""
+    given = [k for k in ANGLE_KEYS if t.has(k)]
+    if len(given) != 1:
+        raise t.error(ANGLE_KEYS[0], "give exactly one of hang_off_angle_from_horizontal_deg "
+                      "and hang_off_angle_from_vertical_deg" + (" (both given)" if given
+                                                                 else " with hang_off_height"))
+    if given[0] == ANGLE_KEYS[0]:
+        return t.number(ANGLE_KEYS[0], gt=0.0, le=90.0, unit="deg")
+    return 90.0 - t.number(ANGLE_KEYS[1], ge=0.0, lt=90.0, unit="deg")
 
 
 def _read_dynamics(t: Table) -> Dynamics:

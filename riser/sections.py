@@ -49,9 +49,13 @@ class SegmentProperties:
 def segment_properties(scene: Scene) -> list[SegmentProperties]:
     """Section properties of every segment of ``scene``, bottom first.
 
-    Submerged weight w = (m_pipe + m_contents) g - rho_w g pi D_o^2 / 4 - buoyancy, where
-    the displaced volume uses the line type's outer diameter; ``submerged_weight``
-    replaces this value when given, and ``weight_scale`` multiplies the result.
+    Submerged weight w = (m + m_contents) g - rho_w g pi D^2 / 4 - buoyancy, where the
+    displaced volume uses the line type's outer diameter D. The line type's
+    ``submerged_weight`` (a datasheet's weight in water) replaces m g - rho_w g pi D^2 / 4;
+    the segment's ``submerged_weight`` replaces the whole sum; ``weight_scale`` multiplies
+    the result. Drag and added mass use the hydrodynamic diameter: the segment's, else the
+    line type's ``hydro_diameter``, else D. A section given without its bore (inner
+    diameter unknown) has its rotary inertia taken as a solid round section's.
     """
     g = scene.gravity
     rho = scene.water_density
@@ -59,15 +63,18 @@ def segment_properties(scene: Scene) -> list[SegmentProperties]:
     s0 = 0.0
     for seg in scene.segments:
         lt = scene.line_types[seg.line_type]
-        D, d = lt.outer_diameter, lt.inner_diameter
+        D = lt.outer_diameter
+        d = lt.inner_diameter if lt.inner_diameter is not None else 0.0
         contents = lt.contents_density * math.pi / 4.0 * d * d
         mass = lt.mass_per_length + contents
         if seg.submerged_weight is not None:
             w = seg.submerged_weight
         else:
-            w = mass * g - rho * g * math.pi / 4.0 * D * D - seg.buoyancy
+            empty = (lt.submerged_weight if lt.submerged_weight is not None else
+                     lt.mass_per_length * g - rho * g * math.pi / 4.0 * D * D)
+            w = empty + contents * g - seg.buoyancy
         w *= seg.weight_scale
-        Dh = seg.hydro_diameter if seg.hydro_diameter is not None else D
+        Dh = seg.hydro_diameter or lt.hydro_diameter or D
         # polar moment of the wall per length: m_wall (D^2 + d^2) / 8
         rot = lt.mass_per_length * (D * D + d * d) / 8.0
         out.append(SegmentProperties(

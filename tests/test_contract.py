@@ -91,7 +91,7 @@ def test_stress_reads_the_status_not_the_message(monkeypatch):
     # a message that used to be matched for "no equilibrium" decides nothing now
     fake = SolveResult("bvp", "small", Status.NOT_CONVERGED,
                        "the tension tends to zero, so probably no static equilibrium")
-    monkeypatch.setattr(stress, "solve_scene", lambda scene, method: fake)
+    monkeypatch.setattr(stress, "solve_scene", lambda scene, method, **kw: fake)
     row, _ = stress.run_one("hard-deep-scr", "bvp")
     assert row["outcome"] == "failed"
     fake.status = Status.NO_EQUILIBRIUM
@@ -107,7 +107,7 @@ def test_cli_element_length_override_is_validated(tmp_path, run_cli):
                                       str(tmp_path / "o")])
     assert code == 2
     lines = err.splitlines()
-    assert len(lines) == 1 and "vfife.element_length: must be <= 1000 m" in lines[0], err
+    assert len(lines) == 1 and "error: command line: --element-length: must be <= 1000 m" in lines[0], err
 
 
 def test_cli_unexpected_error_is_one_line(monkeypatch, tmp_path, run_cli):

@@ -246,7 +246,62 @@ def test_progress_reports_done_total_elapsed_remaining():
 def test_cli_has_cost_command():
     from verification.cli import build_parser
     args = build_parser().parse_args(["cost", "wang2014-baseline", "--repeats", "1"])
-    assert args.func.__name__ == "cmd_cost" and args.repeats == 1
+    assert args.func.__name__ == "cmd_cost" and args.repeats == 1 and not args.full
+    assert build_parser().parse_args(["cost", "yu2021-a3", "--full"]).full
+    assert build_parser().parse_args(["reproduce", "all", "--full"]).full
+    assert not build_parser().parse_args(["reproduce", "all"]).full
+
+
+def _key(s):
+    return (s.method, s.setting, s.value)
+
+
+def test_fast_sweep_is_the_full_sweep_without_its_dear_rows():
+    """``riser-verify cost SCENE`` (and ``reproduce all``) runs the fast sweep: the full
+    sweep's rows in the same order, without the BVP mesh rows, the relaxation settings but
+    the 5 m coarse mesh, and the order sweep at tight tolerances with its check; ``--full``
+    runs every row."""
+    from verification.catalog import resolve
+    sc = resolve("yu2021-a3")
+    full = settings.default_settings(sc, asymptotic=4.2, full=True)
+    fast = settings.default_settings(sc, asymptotic=4.2)
+    keys = [_key(s) for s in fast]
+    assert keys == [_key(s) for s in full if _key(s) in set(keys)]      # same order
+    kinds = {s.setting for s in fast}
+    assert kinds == {"tolerance", "element_length", "coarse_element_length",
+                     "dynamics_1s_element_length"}
+    assert [s.value for s in fast if s.setting == "tolerance"] == list(settings.BVP_TOLERANCES)
+    assert [s.value for s in fast if s.setting == "element_length"] == \
+        list(settings.ELEMENT_LENGTHS)
+    assert [s.value for s in fast if s.setting == "coarse_element_length"] == [5.0]
+    dear = {"initial_nodes", "max_nodes", "time_step_safety", "static_tolerance",
+            "rotational_inertia_scale", "element_length_tight", "element_length_tight_check"}
+    assert dear <= {s.setting for s in full}
+    assert len(full) - len(fast) == sum(1 for s in full if s.setting in dear) + 2  # 2, 20 m
+
+
+def test_fast_sweep_report_says_what_needs_full(tmp_path):
+    """The fast sweep fits no order and extrapolates no VFIFE limit (it has no order sweep),
+    and its report says which sections need ``--full`` instead of showing numbers there."""
+    import pandas as pd
+    st = cost.study(touchdown_line(), repeats=1, element_lengths=(8.0, 4.0), progress=False)
+    assert st.sweep == "fast" and not st.has_order_sweep
+    assert not st.orders and not st.vfife_limit and not st.noise_floor
+    assert all(not r.self_errors for r in st.runs if r.method == "vfife")
+    assert st.bvp_self                                    # the BVP's own uncertainty is there
+    assert "statics_tight" not in st.scaling and "statics" in st.scaling
+    cost.write(st, tmp_path)
+    text = (tmp_path / "report.md").read_text()
+    assert "**Fast sweep, not the full study.**" in text
+    assert text.count("**Needs `--full`") == 2          # the limit and the order sections
+    assert "| fitted order |" not in text and "| VFIFE Richardson order |" not in text
+    assert "| quantity | BVP reference uncertainty |\n" in text
+    assert "`statics tight` row (the cost of the order sweep) needs `--full`" in text
+    df = pd.read_csv(tmp_path / "runs.csv")
+    assert "element_length_tight" not in set(df.setting)
+    assert df[df.method == "vfife"].filter(like="self_").isna().all().all()
+    assert df[df.method == "bvp"]["self_max_moment"].notna().all()
+    assert "--full" in cost.report.index_row(tmp_path)[2]
 
 
 def test_asymptotic_length_of_the_converted_wang_baseline():
@@ -276,12 +331,12 @@ def test_order_sweep_has_three_lengths_in_the_asymptotic_range():
     sc = resolve("yu2021-a3")
 
     def tight(asym):
-        return [s.value for s in settings.default_settings(sc, asymptotic=asym)
+        return [s.value for s in settings.default_settings(sc, asymptotic=asym, full=True)
                 if s.setting == "element_length_tight"]
     assert tight(27.0) == list(settings.ORDER_LENGTHS)
     assert tight(4.2) == list(settings.ORDER_LENGTHS)        # 4, 3, 2, 1.5, 1 in the fit
     assert tight(1.2) == [*settings.ORDER_LENGTHS, 0.5]      # 1 and 0.5: all there is
-    check = [s for s in settings.default_settings(sc)
+    check = [s for s in settings.default_settings(sc, full=True)
              if s.setting == "element_length_tight_check"]
     assert len(check) == 1
     assert check[0].solve_kwargs["tolerance"] == pytest.approx(settings.TIGHT_TOLERANCE / 10)

@@ -166,8 +166,10 @@ CASES = [
      "segments[1].line_type", ["required"]),
     ("missing-outer_diameter", W, "outer_diameter = 0.2032\n", "",
      "line_types.steel.outer_diameter", ["required"]),
+    # without a wall dimension the density cannot give a mass (issue 13: a section may be
+    # given by mass_per_length, EA and EI alone)
     ("missing-wall-or-inner", W, "wall_thickness = 0.0191\n", "",
-     "line_types.steel.wall_thickness", ["required"]),
+     "line_types.steel.density", ["needs wall_thickness or inner_diameter", "mass_per_length"]),
     ("missing-density-or-mass", W, "density = 7860.0\n", "", "line_types.steel.density", ["required"]),
     # the Wang base is inextensible (its end form's default): only EI is needed
     ("missing-youngs-or-stiffnesses", W, "youngs_modulus = 2.06e11\n", "",
@@ -182,7 +184,7 @@ CASES = [
     ("missing-seabed-stiffness", F, "stiffness = 1.0e5\n", "", "seabed.stiffness", ["required"]),
     ("missing-hang_off", F, "hang_off = [600.0, 500.0]\n", "", "ends.hang_off", ["required"]),
     ("missing-hang_off_angle", W, "tdp_tension = 160000.0", "hang_off_height = 1586.3",
-     "ends.hang_off_angle_deg", ["required"]),
+     "ends.hang_off_angle_from_horizontal_deg", ["exactly one", "_from_vertical_deg"]),
     ("missing-ends-form", W, "tdp_tension = 160000.0", "",
      "ends", ["give one of", "tdp_tension", "anchor + hang_off"]),
     # wrong types
@@ -279,13 +281,22 @@ CASES = [
     ("unknown-line-type-ref", W, 'line_type = "steel"\nlength = 520.0', 'line_type = "titanium"\nlength = 520.0',
      "segments[1].line_type", ["unknown line type 'titanium'", "'steel'"]),
     ("ends-tdp-and-angle", W, "tdp_tension = 160000.0", "tdp_tension = 160000.0\nhang_off_height = 1500.0\n"
-     "hang_off_angle_deg = 80.0", "ends.hang_off_angle_deg", ["more than one [ends] form", "exactly one"]),
+     "hang_off_angle_from_horizontal_deg = 80.0", "ends.hang_off_angle_from_horizontal_deg", ["more than one [ends] form", "exactly one"]),
     ("ends-tdp-and-fixed", F, "anchor = [0.0, 0.0]", "tdp_tension = 1.0e5\nanchor = [0.0, 0.0]",
      "ends.hang_off", ["more than one [ends] form", "tdp_tension"]),
     ("ends-angle-and-fixed", F, "anchor = [0.0, 0.0]", "hang_off_height = 400.0\nanchor = [0.0, 0.0]",
      "ends.hang_off", ["more than one [ends] form", "hang_off_height"]),
-    ("angle-over-90", W, "tdp_tension = 160000.0", "hang_off_height = 1500.0\nhang_off_angle_deg = 95.0",
-     "ends.hang_off_angle_deg", ["must be <= 90 deg"]),
+    ("angle-over-90", W, "tdp_tension = 160000.0", "hang_off_height = 1500.0\nhang_off_angle_from_horizontal_deg = 95.0",
+     "ends.hang_off_angle_from_horizontal_deg", ["must be <= 90 deg"]),
+    ("angle-from-vertical-90", W, "tdp_tension = 160000.0", "hang_off_height = 1500.0\n"
+     "hang_off_angle_from_vertical_deg = 90.0", "ends.hang_off_angle_from_vertical_deg",
+     ["must be < 90 deg"]),
+    # issue 13: an angle whose reference is not named is ambiguous, and two are too many
+    ("angle-ambiguous", W, "tdp_tension = 160000.0", "hang_off_height = 1500.0\n"
+     "hang_off_angle_deg = 12.0", "ends.hang_off_angle_deg", ["ambiguous", "_from_vertical_deg"]),
+    ("angle-both-references", W, "tdp_tension = 160000.0", "hang_off_height = 1500.0\n"
+     "hang_off_angle_from_vertical_deg = 12.0\nhang_off_angle_from_horizontal_deg = 78.0",
+     "ends.hang_off_angle_from_horizontal_deg", ["exactly one", "both given"]),
     # [model]: the continuum model (README "One model, two methods")
     ("model-axial-unknown", F, "[bvp]", "[model]\naxial = \"stretchy\"\n[bvp]", "model.axial",
      ["must be one of 'extensible', 'inextensible'"]),
@@ -299,7 +310,7 @@ CASES = [
      "segments", ["line length 1000 m is not longer than the distance 1029.56 m",
                   "inextensible"]),
     ("line-shorter-than-height", W, "tdp_tension = 160000.0",
-     "hang_off_height = 3000.0\nhang_off_angle_deg = 80.0", "segments", ["cannot reach", "3000"]),
+     "hang_off_height = 3000.0\nhang_off_angle_from_horizontal_deg = 80.0", "segments", ["cannot reach", "3000"]),
     ("hang-off-below-seabed", F, "hang_off = [600.0, 500.0]", "hang_off = [600.0, -10.0]",
      "ends.hang_off[1]", ["must be > 0", "seabed"]),
     ("hang-off-on-seabed", F, "hang_off = [600.0, 500.0]", "hang_off = [600.0, 0.0]",
@@ -307,7 +318,7 @@ CASES = [
     ("hang-off-above-surface", F, "hang_off = [600.0, 500.0]", "hang_off = [600.0, 600.0]",
      "ends.hang_off[1]", ["must be <= water_depth 500 m"]),
     ("hang-off-height-above-surface", F, "anchor = [0.0, 0.0]\nhang_off = [600.0, 500.0]",
-     "hang_off_height = 600.0\nhang_off_angle_deg = 80.0", "ends.hang_off_height",
+     "hang_off_height = 600.0\nhang_off_angle_from_horizontal_deg = 80.0", "ends.hang_off_height",
      ["must be <= water_depth 500 m"]),
     ("hang-off-behind-anchor", F, "hang_off = [600.0, 500.0]", "hang_off = [-600.0, 500.0]",
      "ends.hang_off[0]", ["must be > anchor[0] = 0"]),
@@ -475,9 +486,12 @@ BLAMED = {
     ("wang", "line_types.steel.youngs_modulus", "removed"): "line_types.steel.bending_stiffness",
     # a missing [ends] key leaves no form at all
     ("wang", "ends.tdp_tension", "removed"): "ends",
-    # without inner_diameter / mass_per_length the other form of the pair is required
-    ("fixed", "line_types.steel.inner_diameter", "removed"): "line_types.steel.wall_thickness",
+    # the other form of a pair is required (issue 13: no wall dimension is needed for a
+    # section given by its properties; the Wang base's density needs its wall_thickness)
+    ("wang", "line_types.steel.wall_thickness", "removed"): "line_types.steel.density",
     ("fixed", "line_types.steel.mass_per_length", "removed"): "line_types.steel.density",
+    # the fixed base holds contents: its bore is needed, and named by the contents
+    ("fixed", "line_types.steel.inner_diameter", "removed"): "line_types.steel.contents_density",
 }
 REMOVED = object()
 VARIANTS = {

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import difflib
 from pathlib import Path
 
 from riser.errors import SceneError
@@ -17,15 +18,28 @@ def builtin_paths() -> dict[str, Path]:
 
 
 def resolve(name_or_path: str) -> Scene:
-    """Load a built-in scene by name, or a scene file by path."""
+    """Load a scene file by path, else a built-in scene by name.
+
+    An existing file wins over a built-in name; a built-in name wins over a directory of
+    the same name (e.g. an output folder). Raises :class:`SceneError` (one line naming what
+    was given) when it is neither, saying how to list the built-in names and, for a near
+    miss, which one was probably meant.
+    """
     p = Path(name_or_path)
-    if p.suffix == ".toml" or p.exists():
-        return load_scene(p)
     paths = builtin_paths()
+    if p.is_file():
+        return load_scene(p)
     if name_or_path in paths:
         return load_scene(paths[name_or_path])
-    raise SceneError(name_or_path, "", "no such file and no built-in scene of that name "
-                     "(`riser-verify scenes` lists them)")
+    if p.exists() or p.is_symlink():        # a directory, a device, a dangling link
+        return load_scene(p)
+    near = difflib.get_close_matches(p.stem if p.suffix == ".toml" else name_or_path,
+                                     list(paths), n=1, cutoff=0.75)
+    hint = f"; did you mean the built-in '{near[0]}'?" if near else ""
+    what = ("cannot read file (no such file)" if p.suffix == ".toml" or len(p.parts) > 1
+            else "no such file and no built-in scene of that name")
+    raise SceneError(name_or_path, "", f"{what}; a scene is a .toml file or a built-in name "
+                     f"(`riser-verify scenes` lists them){hint}")
 
 
 def list_builtin() -> list[tuple[str, str]]:

@@ -22,12 +22,19 @@ from pathlib import Path
 from riser.errors import SceneError, SolveFailed, UnsupportedSceneError
 from riser.result import METHODS
 
+from . import outdir
 from .catalog import list_builtin, resolve
+from .progress import Progress, UnitTracker
 from .studies import STUDIES
 
 
 def _err(msg: str) -> None:
     print(f"error: {msg}", file=sys.stderr)
+
+
+def _progress(args, label: str) -> Progress:
+    """The progress display of a long command (on a terminal, unless ``--quiet``)."""
+    return Progress(label, quiet=getattr(args, "quiet", False))
 
 
 def cmd_scenes(args) -> int:
@@ -38,12 +45,45 @@ def cmd_scenes(args) -> int:
     return 0
 
 
+def _check_overrides(scene, args) -> None:
+    """Validate the command-line overrides exactly like their scene keys (the settings'
+    one validator), naming the option: ``error: command line: --element-length: ...``."""
+    from riser.validity import check_resolution
+    options = {"--tolerance": ("bvp", "tolerance", getattr(args, "tolerance", None)),
+               "--element-length": ("vfife", "element_length",
+                                    getattr(args, "element_length", None))}
+    for option, (table, key, value) in options.items():
+        if value is None:
+            continue
+        try:
+            getattr(scene, table).override(**{key: value})
+            if key == "element_length":
+                check_resolution(scene, value, source="command line", key=option)
+        except SceneError as exc:
+            raise SceneError("command line", option, exc.message) from None
+
+
+def _warn(res, strict: bool) -> int:
+    """Print a result's named warnings (stderr); with ``--strict`` they fail the run."""
+    for w in res.warnings:
+        print(f"warning: {res.method}: {w}", file=sys.stderr)
+    if strict and res.warnings:
+        _err(f"{res.method} on {res.scene}: {len(res.warnings)} warning(s) and --strict: the "
+             "result is outside the model's validity (see summary.json 'warnings')")
+        return 1
+    return 0
+
+
 def cmd_solve(args) -> int:
     from . import pipeline
+    outdir.clear(args.out, outdir.SOLVE)      # before reading: bad input leaves nothing stale
     scene = resolve(args.scene)
-    res = pipeline.solve_scene(scene, args.method, tolerance=args.tolerance,
-                      element_length=args.element_length)
     out = Path(args.out) if args.out else Path("out") / scene.name / args.method
+    outdir.clear(out, outdir.SOLVE)
+    _check_overrides(scene, args)
+    with _progress(args, f"solve {scene.name} [{args.method}]") as prog:
+        res = pipeline.solve_scene(scene, args.method, tolerance=args.tolerance,
+                                   element_length=args.element_length, progress=prog)
     res.write(out)
     if not res.converged:
         _err(f"{args.method} on {scene.name}: {res.status.value} ({res.status.meaning}): "
@@ -58,15 +98,13 @@ def cmd_solve(args) -> int:
         print(f"  touchdown x = {sm['tdp_x']:.2f} m, tension {sm['tdp_tension'] / 1e3:.2f} kN")
     print(f"  max tension {sm['max_tension'] / 1e3:.2f} kN, max moment "
           f"{sm['max_moment'] / 1e3:.3f} kN m at s = {sm['max_moment_s']:.1f} m")
-    for w in res.warnings:
-        print(f"  warning: {w}")
     print(f"  wrote {out}/profile.csv and summary.json")
-    return 0
+    return _warn(res, args.strict)
 
 
 def cmd_reproduce(args) -> int:
     from .index import write_index
-    from .studies import run_unit, units
+    from .studies import run_unit, study, units
     base = Path(args.out) if args.out else None
 
     def out_of(study_name: str) -> str:
@@ -74,21 +112,34 @@ def cmd_reproduce(args) -> int:
             return str(Path("reports") / study_name)
         return str(base / study_name if args.name == "all" else base)
 
-    todo = units(args.name)
+    todo = units(args.name, args.full)
+    for name, unit in todo:                   # no report of an earlier run survives a failure
+        outdir.clear_unit(name, unit, out_of(name))
     jobs = max(1, min(args.jobs, len(todo)))
     t0 = time.perf_counter()
     note = (f"Timings measured while `riser-verify reproduce {args.name}` ran other units in "
             f"{jobs - 1} more worker process(es) on this {os.cpu_count()}-core machine; run "
             "`riser-verify cost SCENE` alone for uncontended timings." if jobs > 1 else "")
-    if jobs == 1:
-        for u in todo:
-            print(run_unit(*u, out_of(u[0]), note), flush=True)
-    else:
-        with cf.ProcessPoolExecutor(max_workers=jobs,
-                                    mp_context=mp.get_context("spawn")) as pool:
-            futures = [pool.submit(run_unit, *u, out_of(u[0]), note) for u in todo]
-            for f in cf.as_completed(futures):
-                print(f.result(), flush=True)
+    # progress: units done, weighted by the studies' declared seconds; the units' own
+    # output is printed above the status line
+    track = UnitTracker([study(n).unit_seconds(u, args.full) for n, u in todo], jobs)
+    with _progress(args, f"reproduce {args.name}") as prog:
+        prog.source = track
+        if jobs == 1:
+            for i, u in enumerate(todo):
+                with prog.capture():
+                    line = run_unit(*u, out_of(u[0]), note, args.full)
+                prog.log(line)
+                track.done(i)
+        else:
+            ctx = mp.get_context("spawn")
+            with cf.ProcessPoolExecutor(max_workers=jobs, mp_context=ctx,
+                                        **prog.worker_options(ctx)) as pool:
+                futures = [pool.submit(run_unit, *u, out_of(u[0]), note, args.full)
+                           for u in todo]
+                for f in cf.as_completed(futures):
+                    prog.log(f.result())
+                    track.done(futures.index(f))
     print(f"reproduce {args.name}: {len(todo)} unit(s) in {time.perf_counter() - t0:.0f} s "
           f"with {jobs} process(es)")
     if base is None:
@@ -100,17 +151,22 @@ def cmd_reproduce(args) -> int:
 
 def cmd_compare(args) -> int:
     from . import compare, compare_report
+    outdir.clear(args.out, outdir.COMPARE)
     scene = resolve(args.scene)
-    comp = compare.compare(scene, element_length=args.element_length,
-                           paper_model=not args.no_paper_model)
     out = Path(args.out) if args.out else Path("out") / scene.name / "compare"
+    outdir.clear(out, outdir.COMPARE)
+    _check_overrides(scene, args)
+    with _progress(args, f"compare {scene.name}") as prog:
+        comp = compare.compare(scene, element_length=args.element_length,
+                               paper_model=not args.no_paper_model, progress=prog)
     compare_report.write(comp, out)
     for r in comp.rows:
         flag = "ok  " if r["pass"] else "FAIL"
         rel = f"{100 * r['rel_diff']:+.4f} %" if r["rel_diff"] is not None else ""
         print(f"  {flag} {r['quantity']:<22} |diff| {r['abs_diff'] if r['abs_diff'] is not None else float('nan'):.6g} {rel}")
     print(f"{scene.name}: {'PASS' if comp.passed else 'FAIL'}; wrote {out}/agreement.csv, report.md")
-    return 0 if comp.passed else 1
+    warned = max(_warn(comp.bvp, args.strict), _warn(comp.vfife, args.strict))
+    return 0 if comp.passed and not warned else 1
 
 
 def cmd_regress(args) -> int:
@@ -127,7 +183,13 @@ def cmd_regress(args) -> int:
 def cmd_stress(args) -> int:
     from . import stress
     out = Path(args.out) if args.out else Path("reports") / "stress"
-    df = stress.run(out, names=args.scenes or None)
+    known = stress.hard_scenes()
+    for name in args.scenes or ():
+        if name not in known:
+            raise SceneError(name, "", f"not a hard scene (known: {', '.join(known)})")
+    outdir.clear(out, outdir.STRESS)
+    with _progress(args, "stress") as prog:
+        df = stress.run(out, names=args.scenes or None, log=prog.log, progress=prog)
     silent = df[df.outcome == "SILENT FAILURE"]
     print(f"stress: {len(df)} runs, {len(silent)} silent failure(s); wrote {out}/report.md")
     return 1 if len(silent) else 0
@@ -139,6 +201,7 @@ def cmd_bench(args) -> int:
 
     from . import wang2014
     out = Path(args.out) if args.out else Path("reports") / "bench"
+    outdir.clear(out, outdir.BENCH)
     bench = run_bench(out, wang2014.bench_scene())
     scenes = wang2014.SCENES
     bench["bvp"] = bvp_bench(resolve(scenes[0.0]), [resolve(n) for v, n in scenes.items() if v])
@@ -154,18 +217,28 @@ def cmd_bench(args) -> int:
 
 def cmd_cost(args) -> int:
     from . import cost
+    outdir.clear(args.out, outdir.COST)
     scene = resolve(args.scene)
     out = Path(args.out) if args.out else Path("reports") / "cost" / scene.name
-    st = cost.study(scene, repeats=args.repeats, quick=args.quick)
+    outdir.clear(out, outdir.COST)
+    with _progress(args, f"cost {scene.name}") as prog:
+        prog("solving the reference and the first settings", fraction=0.0)
+        st = cost.study(scene, repeats=args.repeats, quick=args.quick, progress=prog,
+                        full=args.full)
     cost.write(st, out)
     print(f"{scene.name}: cost study of {len(st.runs)} runs in {st.elapsed_s:.0f} s; "
           f"wrote {out}/runs.csv, report.md")
     return 0
 
 
+QUIET_HELP = ("no progress display (shown on stderr only when it is a terminal: a status "
+              "line updated in place, with an ETA where the fraction done is known)")
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="riser-verify", description=(
         "Dual-method verification suite for deepwater risers (VFIFE and BVP)."))
+    p.add_argument("-q", "--quiet", action="store_true", help=QUIET_HELP)
     sub = p.add_subparsers(dest="command", required=True)
     s = sub.add_parser("scenes", help="list the built-in scenes")
     s.set_defaults(func=cmd_scenes)
@@ -175,12 +248,17 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--out", help="output directory (default out/SCENE/METHOD)")
     s.add_argument("--tolerance", type=float, help="bvp: solve_bvp tolerance")
     s.add_argument("--element-length", type=float, help="vfife: element length [m]")
+    s.add_argument("--strict", action="store_true",
+                   help="exit 1 when the result carries warnings (outside the model's validity)")
     s.set_defaults(func=cmd_solve)
     s = sub.add_parser("reproduce", help="regenerate a paper reproduction report")
     s.add_argument("name", choices=(*STUDIES, "all"))
     s.add_argument("--jobs", type=int, default=min(2, os.cpu_count() or 1),
                    help="worker processes (default: min(2, cores)); 1 runs serially")
     s.add_argument("--out", help="output directory (default reports/NAME)")
+    s.add_argument("--full", action="store_true",
+                   help="the cost study's full sweep (order sweep at tight tolerances, every "
+                        "relaxation setting): ~15 min more on 2 cores")
     s.set_defaults(func=cmd_reproduce)
     s = sub.add_parser("compare", help="solve a scene with both methods and compare them")
     s.add_argument("scene", help="built-in scene name or path to a .toml scene file")
@@ -189,6 +267,8 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--no-paper-model", action="store_true",
                    help="skip the secondary comparison with the BVP's paper model (inextensible "
                         "line on a rigid seabed), which is not part of the verdict")
+    s.add_argument("--strict", action="store_true",
+                   help="exit 1 when either method's result carries warnings")
     s.set_defaults(func=cmd_compare)
     s = sub.add_parser("regress", help="compare every built-in scene with its stored summary")
     s.add_argument("scenes", nargs="*", help="only these built-in scenes")
@@ -208,7 +288,13 @@ def build_parser() -> argparse.ArgumentParser:
                    help="timed runs per setting (median; default 3)")
     s.add_argument("--quick", action="store_true",
                    help="coarse subset of settings (development)")
+    s.add_argument("--full", action="store_true",
+                   help="full sweep: adds the order sweep at tight tolerances (the order fit, "
+                        "the VFIFE limit) and every relaxation setting; ~4x the time")
     s.set_defaults(func=cmd_cost)
+    for name in ("solve", "compare", "stress", "cost", "reproduce"):   # also after the command
+        sub.choices[name].add_argument("-q", "--quiet", action="store_true",
+                                       default=argparse.SUPPRESS, help=QUIET_HELP)
     return p
 
 

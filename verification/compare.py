@@ -202,7 +202,7 @@ def model_text(scene: Scene) -> str:
 
 
 def compare(scene: Scene, *, element_length: float | None = None, paper_model: bool = True,
-            vfife_modifier=None, log=None) -> Comparison:
+            vfife_modifier=None, log=None, progress=None) -> Comparison:
     """Solve ``scene`` with both methods in the same model and compute the agreement rows.
 
     ``element_length`` [m]: VFIFE element length (default the scene's ``[vfife]
@@ -211,28 +211,34 @@ def compare(scene: Scene, *, element_length: float | None = None, paper_model: b
     ``vfife_modifier`` (Scene -> Scene) alters only the VFIFE scene:
     used by the negative controls (e.g. drag halved) to prove that the check can fail.
     A scene with [dynamics] is compared in its static equilibrium. Raises
-    :class:`~riser.errors.SolveFailed` when a method does not converge.
+    :class:`~riser.errors.SolveFailed` when a method does not converge. ``log``: callable
+    told of each finished solve; ``progress``: callable told of what runs now (the VFIFE
+    relaxation included; see :mod:`verification.progress`).
     """
     say = log or (lambda msg: None)
+    now = progress or (lambda msg: None)
     notes: list[str] = []
     if scene.dynamics is not None:
         scene = scene.replace(dynamics=None)
         notes.append("The scene's [dynamics] are ignored: the protocol compares the static "
                      "equilibrium.")
     t0 = time.perf_counter()
+    if scene.ends.kind != "fixed":
+        now("bvp: solving the paper model for the conversion to fixed ends")
     eq = vfife_equivalent(scene)
     matched, s_shift, paper = eq.scene, eq.s_shift, eq.paper
     if eq.note:
         say(f"{scene.name}: paper-model BVP {paper.message} ({eq.seconds:.1f} s)")
         notes.append(f"The scene was converted: {eq.note}; both methods solve this "
                      "converted scene.")
+    now("bvp: solving the matched model")
     b = bvp.solve(matched)
     say(f"{scene.name}: matched BVP {b.message} ({time.perf_counter() - t0:.1f} s)")
     if not b.converged:
         raise SolveFailed("bvp", b.status, f"bvp did not converge on {matched.name}: "
                           f"{b.message}")
     vf_scene = vfife_modifier(matched) if vfife_modifier is not None else matched
-    v = vfife.solve(vf_scene, element_length=element_length)
+    v = vfife.solve(vf_scene, element_length=element_length, progress=progress)
     say(f"{scene.name}: VFIFE {v.message} ({time.perf_counter() - t0:.1f} s)")
     if not v.converged:
         raise SolveFailed("vfife", v.status, f"vfife did not converge on {scene.name}: "
@@ -245,6 +251,7 @@ def compare(scene: Scene, *, element_length: float | None = None, paper_model: b
     if paper_model:
         if paper is None:
             try:
+                now("bvp: solving the paper model (secondary comparison)")
                 paper = bvp.solve(paper_model_scene(scene))
             except Exception as exc:       # the paper model may not be able to represent it
                 notes.append(f"The paper model could not be set up: {exc}")

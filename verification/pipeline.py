@@ -20,6 +20,7 @@ from dataclasses import dataclass
 
 import bvp
 import vfife
+from riser import validity
 from riser.errors import SolveFailed
 from riser.profile import Profile
 from riser.result import METHODS, SolveResult
@@ -81,6 +82,17 @@ def shifted(profile: Profile | None, s_shift: float) -> Profile | None:
                                tdp_s=None if profile.tdp_s is None else profile.tdp_s - s_shift)
 
 
+def shifted_dynamics(dyn, s_shift: float):
+    """``dyn`` (a :class:`~riser.result.DynamicsResult`) with ``s_shift`` [m] subtracted
+    from its arc lengths (envelope and states ``s``, the time series' ``max_moment_s``).
+    The dictionaries are updated in place: the result's file writers hold the same ones."""
+    if dyn is not None and s_shift:
+        dyn.timeseries["max_moment_s"] = dyn.timeseries["max_moment_s"] - s_shift
+        dyn.envelope["s"] = dyn.envelope["s"] - s_shift
+        dyn.states["s"] = dyn.states["s"] - s_shift
+    return dyn
+
+
 def solve_scene(scene: Scene, method: str, *, tolerance: float | None = None,
                 element_length: float | None = None, progress=None) -> SolveResult:
     """Solve ``scene`` with ``method`` ('bvp' or 'vfife'). ``tolerance`` applies to the
@@ -91,17 +103,29 @@ def solve_scene(scene: Scene, method: str, *, tolerance: float | None = None,
 
     Raises SceneError (bad input), UnsupportedSceneError (refused before solving) and
     SolveFailed (the BVP a conversion needs did not converge); every other outcome is in
-    the result's status."""
+    the result's status. ``progress``: optional callable, ``progress(message)`` or
+    ``progress(message, fraction=None)`` (see :mod:`verification.progress`); the BVP
+    says only when it starts (``solve_bvp`` has no callback)."""
+    say = progress or (lambda message: None)
     if method == "bvp":
+        say("bvp: solving")
         return bvp.solve(scene, tolerance=tolerance)
     if method != "vfife":
         raise ValueError(f"method must be one of {METHODS}, got {method!r}")
     if scene.ends.kind != "fixed":
         require_vfife_model(scene)
+        # refuse what the VFIFE would refuse before the conversion's BVP solve
+        validity.check_resolution(scene, scene.vfife.override(
+            element_length=element_length).element_length)
+        if scene.ends.kind == "hang_off_angle":
+            validity.check_motion(scene, scene.ends.hang_off_height)
+    if scene.ends.kind != "fixed":
+        say("bvp: solving the scene's own model for the conversion to fixed ends")
     eq = vfife_equivalent(scene)
     res = vfife.solve(eq.scene, element_length=element_length, progress=progress)
     if eq.note:
         res.info["ends_conversion"] = eq.note
         res.scene = scene.name
         res.profile = shifted(res.profile, eq.s_shift)
+        res.dynamics = shifted_dynamics(res.dynamics, eq.s_shift)
     return res

@@ -35,6 +35,7 @@ from riser.result import Status
 from .catalog import SCENE_DIR, resolve
 from .compare import agreement
 from .pipeline import solve_scene
+from .progress import scoped
 from .quantities import reference_depth
 from .report import GENERATED_NOTE, fmt, md_table
 from .study import Study
@@ -58,15 +59,16 @@ OUTCOME = {Status.CONVERGED: "converged", Status.REFUSED: "refused",
            Status.NOT_CONVERGED: "failed"}
 
 
-def run_one(name: str, method: str) -> tuple[dict, object]:
-    """Solve one scene with one method and classify the outcome; never raises."""
+def run_one(name: str, method: str, progress=None) -> tuple[dict, object]:
+    """Solve one scene with one method and classify the outcome; never raises.
+    ``progress``: passed to :func:`~verification.pipeline.solve_scene`."""
     row = {"scene": name, "method": method, "residual": None, "residual_kind": "",
            "agreement": "", "message": ""}
     t0 = time.perf_counter()
     res = None
     try:
         scene = resolve(name)
-        res = solve_scene(scene, method)
+        res = solve_scene(scene, method, progress=progress)
     except UnsupportedSceneError as exc:
         row.update(outcome=OUTCOME[Status.REFUSED], message=str(exc))
     except SceneError as exc:                      # bad input: stopped with its reason
@@ -123,15 +125,22 @@ def _dynamic_checks(dyn) -> list[str]:
     return out
 
 
-def run(out_dir: str | Path = "reports/stress", names: list[str] | None = None, log=print) -> pd.DataFrame:
-    """Run the hard-case suite; write ``summary.csv`` and ``report.md``."""
+def run(out_dir: str | Path = "reports/stress", names: list[str] | None = None, log=print,
+        progress=None) -> pd.DataFrame:
+    """Run the hard-case suite; write ``summary.csv`` and ``report.md``. ``progress``:
+    optional callable ``progress(message, fraction=None)`` (:mod:`verification.progress`),
+    told of each run (fraction: runs done / runs)."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     rows = []
-    for name in names or hard_scenes():
+    todo = names or hard_scenes()
+    for k, name in enumerate(todo):
         results = {}
         for method in ("bvp", "vfife"):
-            row, res = run_one(name, method)
+            i = 2 * k + (method == "vfife")
+            row, res = run_one(name, method, scoped(
+                progress, f"{i + 1}/{2 * len(todo)} {name} [{method}]", i / (2 * len(todo)),
+                (i + 1) / (2 * len(todo))))
             results[method] = res
             rows.append(row)
             log(f"stress {name} [{method}]: {row['outcome']} ({row['wall_time_s']:.1f} s)")
@@ -194,6 +203,6 @@ def index_row(d: Path):
             "pass" if not silent else "fail")
 
 
-STUDY = Study("stress", (None,), lambda unit, out, note: run(out), index_row,
+STUDY = Study("stress", (None,), lambda unit, out, note, full: run(out), index_row,
               seconds={None: 250})
 

@@ -28,18 +28,21 @@ def study(name: str) -> Study:
     return importlib.import_module(STUDY_MODULES[name]).STUDY
 
 
-def units(name: str) -> list[tuple[str, str | None]]:
-    """(study, unit) pairs of ``reproduce NAME`` ('all': every study), longest first."""
+def units(name: str, full: bool = False) -> list[tuple[str, str | None]]:
+    """(study, unit) pairs of ``reproduce NAME`` ('all': every study), longest first
+    (``full``: as long as with ``--full``)."""
     names = STUDIES if name == "all" else (name,)
     out = [(n, u) for n in names for u in study(n).units]
-    return sorted(out, key=lambda su: -study(su[0]).unit_seconds(su[1]))
+    return sorted(out, key=lambda su: -study(su[0]).unit_seconds(su[1], full))
 
 
-def run_unit(name: str, unit: str | None, out: str, note: str = "") -> str:
-    """Run one unit into ``out`` (the study's report directory); returns a line for the
-    log. Top level, with plain arguments, so that worker processes can run it."""
+def run_unit(name: str, unit: str | None, out: str, note: str = "",
+             full: bool = False) -> str:
+    """Run one unit into ``out`` (the study's report directory; ``full``: with the dear
+    parts, ``--full``); returns a line for the log. Top level, with plain arguments, so
+    that worker processes can run it."""
     t0 = time.perf_counter()
-    line = study(name).run(unit, Path(out), note)
+    line = study(name).run(unit, Path(out), note, full)
     if isinstance(line, str):
         return line
     return f"{name}: wrote {out}/ in {time.perf_counter() - t0:.1f} s"

@@ -18,6 +18,7 @@ at the output times go to ``states.npz`` (arrays t (k,), s (n,), x (k, n, 3), v 
 
 from __future__ import annotations
 
+import inspect
 import math
 import time
 
@@ -25,6 +26,24 @@ import numpy as np
 
 from .model import Model, max_speed_hint
 from .timestep import choose_step, critical_steps
+
+#: the dynamics reports its progress this many times over the run (and at its end)
+PROGRESS_REPORTS = 100
+
+
+def with_fraction(progress):
+    """``progress`` callable as ``f(message, fraction=None)``: the progress callbacks
+    take ``(message)`` or ``(message, fraction=f)`` (f: fraction of the run done); a
+    one-argument callable is wrapped so that the fraction is dropped. None stays None."""
+    if progress is None:
+        return None
+    try:
+        params = inspect.signature(progress).parameters.values()
+    except (TypeError, ValueError):
+        params = ()
+    if any(p.name == "fraction" or p.kind is p.VAR_KEYWORD for p in params):
+        return progress
+    return lambda message, fraction=None: progress(message)
 
 
 def top_displacement(scene, t: np.ndarray) -> np.ndarray:
@@ -75,8 +94,11 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
 
     Returns (model at the end, info) where info holds 'timeseries' (dict of arrays),
     'envelope' (dict of arrays along s), 'states' (dict for npz), 'time_step', 'steps',
-    'status' ('ok' | 'blow-up'), 'message', 'wall_s'.
+    'status' ('ok' | 'blow-up'), 'message', 'wall_s'. ``progress``: optional callable,
+    called ``PROGRESS_REPORTS`` times over the run as ``progress(message, fraction=t /
+    duration)`` (the last with 1.0), or ``progress(message)`` if it takes one argument.
     """
+    report = with_fraction(progress)
     dyn = scene.dynamics
     vf = scene.vfife
     mesh = static.mesh
@@ -160,8 +182,9 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
                                                   "time_step": dt}))
             break
         sample(t, (j + 1) % per_out == 0)
-        if progress is not None and (j + 1) % max(1, n_env // 20) == 0:
-            progress(f"dynamics t = {t:.1f} / {dyn.duration:g} s")
+        if report is not None and ((j + 1) % max(1, n_env // PROGRESS_REPORTS) == 0
+                                   or j + 1 == n_env):
+            report(f"dynamics t = {t:.1f} / {dyn.duration:g} s", fraction=(j + 1) / n_env)
     wall = time.perf_counter() - t0
     info = {
         "timeseries": {k: np.asarray(v) for k, v in ts.items()},

@@ -89,6 +89,8 @@ def relax(model: Model, dt: float, c: float, tol: float, max_steps: int,
     accepted only once q is steady (changes by <= 0.05 between windows), i.e. the slowest
     mode dominates the motion. ``creep_windows``: give up after that many windows with
     status 'creeping' (the caller then changes the damping), None: until ``max_steps``.
+    ``progress``: optional callable(message), told after every ``chunk`` of steps and
+    every creep window (no fraction: when the relaxation converges is not known).
     """
     wl = weight_scale(model.mesh)
     h = float(np.max(model.mesh.l0))
@@ -104,7 +106,7 @@ def relax(model: Model, dt: float, c: float, tol: float, max_steps: int,
         k, res, mres, ke, st = model.run(nstep, dt, c, tol_f=tol_f, tol_m=tol_m)
         done += k
         if progress is not None:
-            progress(f"{label} relaxation: {done} steps, residual {res / wl:.3g} x element "
+            progress(f"statics {label}: {done} steps, residual {res / wl:.3g} x element "
                      f"weight")
         if st == 2 or not (np.all(np.isfinite(model.X)) and np.all(np.isfinite(model.D))):
             status = "blow-up"
@@ -134,8 +136,8 @@ def relax(model: Model, dt: float, c: float, tol: float, max_steps: int,
                 creep = d * q / (1.0 - q) if (q < 1.0 and steady) else math.inf
                 d_prev, q_prev = d, q
                 if progress is not None:
-                    progress(f"{label} creep check: {done} steps, moved {d:.3g} m in "
-                             f"{window} steps, estimated remaining {creep:.3g} m")
+                    progress(f"statics {label}: creep check, {done} steps, moved {d:.3g} m "
+                             f"in {window} steps, estimated remaining {creep:.3g} m")
                 # a motion below 1e-3 creep tolerances per window is round-off jitter (its
                 # ratio q is noise): a mode that slow would need > 1000 windows to cover
                 # one creep tolerance

@@ -7,6 +7,7 @@ import time
 
 import numpy as np
 
+from riser import validity
 from riser.errors import UnsupportedSceneError
 from riser.profile import Profile
 from riser.result import DynamicsResult, SolveResult, Status
@@ -78,10 +79,10 @@ def bending_checks(mesh, tension: np.ndarray) -> list[str]:
     mt = float(np.min(lb_t))
     mw = float(np.min(lb_w))
     if h > 0.5 * mt:
-        out.append(f"element length {h:g} m is long compared with the bending length "
+        out.append(f"resolution: element length {h:g} m is long compared with the bending length "
                    f"sqrt(EI/T) = {mt:.3g} m (use <= {0.5 * mt:.2g} m for the moment peaks)")
     if h > 0.25 * mw:
-        out.append(f"element length {h:g} m is long compared with the bending length "
+        out.append(f"resolution: element length {h:g} m is long compared with the bending length "
                    f"(EI/|w|)^(1/3) = {mw:.3g} m (use <= {0.25 * mw:.2g} m)")
     return out
 
@@ -139,7 +140,9 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
 
     element_length [m]: default ``[vfife] element_length`` (1 m); tolerance: largest nodal
     out-of-balance force / one element's weight (default ``[vfife] static_tolerance``,
-    1e-3); progress: optional callable(str).
+    1e-3); progress: optional callable, ``progress(message)`` or ``progress(message,
+    fraction=None)`` (told of the statics' relaxation, and of the dynamics with the
+    fraction of the run done; see :func:`vfife.dynamics.with_fraction`).
     Raises UnsupportedSceneError for scenes without fixed ends, SceneError for an override
     outside the range of its scene key. Never returns NaN results: a failed run has a
     status other than converged (diverged, not_converged) and profile None, with the reason
@@ -149,6 +152,8 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
     require_fixed_ends(scene)
     vf = scene.vfife.override(element_length=element_length, static_tolerance=tolerance)
     h, tol = vf.element_length, vf.static_tolerance
+    validity.check_resolution(scene, h)
+    validity.check_motion(scene, scene.ends.hang_off[1])
     planar = bool(scene.is_planar)
     if vf.clamped_ends and not planar:
         # the elements carry no twist (no GJ): with moment-free ends and no distributed
@@ -158,6 +163,8 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
             f"{scene.name}: vfife.clamped_ends: clamped ends are supported for planar "
             "scenes only (the VFIFE elements carry no twist); remove the out-of-plane "
             "current/motion or the clamp")
+    if progress is not None:
+        progress("vfife: loading the kernels (compiled on the first run)")
     compile_s = warm_up()
     t0 = time.perf_counter()
     model, sinfo = solve_static(scene, h, tol, planar, progress)
@@ -198,6 +205,10 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
         diverged = sinfo["status"] == "blow-up" or not finite
         return result(Status.DIVERGED if diverged else Status.NOT_CONVERGED, why)
     profile = make_profile(model, scene)
+    bad = validity.nonfinite(profile)
+    if bad:
+        return result(Status.DIVERGED, bad)
+    warnings.extend(validity.profile_warnings(scene, profile))
     message = (f"static equilibrium: residual {sinfo['residual']:.2g} x element weight, "
                f"estimated creep {sinfo['creep_m']:.2g} m, after {sinfo['steps']} steps")
     if scene.dynamics is None:
@@ -212,6 +223,10 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
         return result(Status.DIVERGED, dinfo["message"], solver_state=model)
     message += f"; {dinfo['message']} ({dinfo['steps']} steps of {dinfo['time_step']:.3g} s)"
     ts, env = dinfo["timeseries"], dinfo["envelope"]
+    y = dinfo["states"]["x"][:, :, 1]
+    warnings.extend(validity.line_warnings(scene, env["s"], y.min(axis=0), y.max(axis=0),
+                                           env["tension_min"], env["tension_max"],
+                                           when=" during the dynamics"))
     info["dynamic_max_hang_off_tension"] = float(np.max(ts["hang_off_tension"]))
     info["dynamic_min_hang_off_tension"] = float(np.min(ts["hang_off_tension"]))
     info["dynamic_max_moment"] = float(np.max(env["moment_max"]))

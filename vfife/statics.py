@@ -166,7 +166,8 @@ def mesh_sequence(h_coarse: float, h: float, ratio: float = 4.0) -> list[float]:
 
 def solve_static(scene, element_length: float, tolerance: float, planar: bool,
                  progress=None) -> tuple[Model, dict]:
-    """Static equilibrium of a fixed-ends scene; returns (fine model, info dict)."""
+    """Static equilibrium of a fixed-ends scene; returns (fine model, info dict).
+    ``progress``: optional callable(message), told of each mesh stage's relaxation."""
     vf = scene.vfife                    # riser.settings.VFIFESettings (defaults there)
     safety = vf.time_step_safety
     rot_scale = vf.rotational_inertia_scale
@@ -203,6 +204,7 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
     model = None
     total_steps = 0
     for si, h in enumerate(stages):
+        stage = f"{h:g} m mesh ({si + 1}/{len(stages)})"      # progress messages
         mesh = build_mesh(scene, h)
         if model is None:
             X, D, cinfo = catenary_shape(scene, mesh.s)
@@ -294,7 +296,7 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
                 lam = j / ramp[1]
                 new.wload = (1.0 - lam) * wl_uni + lam * wl_true
                 rr = relax(new, dt, cfac * 2.0 * om1, 1e-2, max(1, budget // (4 * ramp[1])),
-                           label=f"{h:g} m mesh, weight ramp {lam:.2f}")
+                           progress=progress, label=f"{stage}, weight ramp {lam:.2f}")
                 pre += rr["steps"]
                 if rr["status"] == "blow-up":
                     break
@@ -305,7 +307,7 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
         ctol = creep_tol if creep_tol > 0 else None
         if si == 0:
             r = relax(new, dt, cfac * 2.0 * om1, tolerance, budget, progress=progress,
-                      label=f"{h:g} m mesh", creep_tol=ctol)
+                      label=stage, creep_tol=ctol)
         else:
             # fine stage of a sequence: heavy damping until the force residual is met (the
             # short waves of the interpolated start decay at c/2); if the long modes still
@@ -315,11 +317,11 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
             # 7.4e5 at 3 x), while short waves need the heavy damping (Wang baseline:
             # 3.6e4 at 30 x, 4.2e5 at 3 x; hard-stiff stalls at 1.4e-3 at 3 x)
             c = (cfac_current if new.use_drag else cfac_fine) * 2.0 * om1
-            r = relax(new, dt, c, tolerance, budget, progress=progress, label=f"{h:g} m mesh",
+            r = relax(new, dt, c, tolerance, budget, progress=progress, label=stage,
                       creep_tol=ctol, creep_windows=4 if ctol is not None else None)
             if r["status"] == "creeping" and budget > r["steps"]:
                 r2 = relax(new, dt, cfac * 2.0 * om1, tolerance, budget - r["steps"],
-                           progress=progress, label=f"{h:g} m mesh (long modes)",
+                           progress=progress, label=f"{stage}, long modes",
                            creep_tol=ctol)
                 r2["steps"] += r["steps"]
                 r2["wall_s"] += r["wall_s"]

@@ -57,9 +57,11 @@ def analyse(st: CostStudy) -> None:
         label = (f"static tolerance {TIGHT_TOLERANCE:g} x element weight and creep tolerance "
                  f"{TIGHT_CREEP:g} x line length, mesh sequencing as by default")
         noise = st.sweep_noise
-    else:
+    elif st.has_order_sweep:      # fewer than three tight runs converged: fall back
         order_sweep, label, noise = default, "default static and creep tolerances", \
             st.noise_floor
+    else:                         # the fast sweep has no order sweep: no orders, no limit
+        order_sweep, label, noise = [], "", {}
     st.order_sweep = label
     st.order_setting = order_sweep[0].setting.setting if order_sweep else ""
     prof = st.reference.profile

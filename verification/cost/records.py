@@ -72,6 +72,13 @@ class CostStudy:
     scaling: dict = field(default_factory=dict)
     notes: list = field(default_factory=list)
     elapsed_s: float = 0.0
+    sweep: str = "full"              # 'fast' (default), 'full' (--full), 'quick', 'given'
+
+    @property
+    def has_order_sweep(self) -> bool:
+        """Whether the order sweep (``element_length_tight`` rows) was run: the fast sweep
+        leaves it to ``--full``."""
+        return any(r.setting.setting == "element_length_tight" for r in self.runs)
 
     def frame(self) -> pd.DataFrame:
         """``runs.csv``: one row per run (:data:`RUN_COLUMNS`, then :data:`EXTRA_COLUMNS`)."""

@@ -14,6 +14,11 @@ from .assessment import EXPECTED_ORDER, ORDER_BAND, order_assessment
 from .errors import QUANTITIES, QUANTITY_LABEL, family
 from .fits import NOISE_MARGIN, PRE_ASYMPTOTIC, pareto, worst_mesh
 from .records import EXTRA_COLUMNS, RUN_COLUMNS, CostStudy, Run
+from .settings import FAST_SWEEP, FULL_ADDS
+
+#: how to get what the fast sweep leaves out
+FULL_COMMAND = ("`riser-verify cost SCENE --full` (or `riser-verify reproduce cost --full`, "
+                "`riser-verify reproduce all --full`)")
 
 
 def _label(r: Run | None) -> str:
@@ -71,6 +76,7 @@ def report_markdown(st: CostStudy) -> str:
          "`self_*`: against the method's own converged limit (VFIFE: Richardson "
          "extrapolation of the three finest element lengths of the order sweep).", ""]
     L += [f"- {n}" for n in st.notes]
+    L += _sweep_lines(st)
     failed = [r for r in st.runs if not r.converged]
     if failed:
         L += ["", "Runs that did not converge (kept in `runs.csv`, excluded from fits and "
@@ -108,7 +114,30 @@ def report_markdown(st: CostStudy) -> str:
     return "\n".join(L)
 
 
+def _sweep_lines(st: CostStudy) -> list[str]:
+    """What a fast (or quick) sweep ran and which sections need ``--full``."""
+    if st.sweep not in ("fast", "quick"):
+        return []
+    ran = FAST_SWEEP if st.sweep == "fast" else "a coarse subset (`--quick`, development)"
+    return [f"- **Fast sweep, not the full study.** This report ran {ran}. The full sweep, "
+            f"{FULL_COMMAND}, adds {FULL_ADDS}. Without them, these need `--full` and show no numbers here: the `self_*` errors of the "
+            "VFIFE runs (against VFIFE's own Richardson limit), the VFIFE columns of "
+            "\"Reference, relaxation and the VFIFE limit\", the \"Observed VFIFE order in "
+            "element length\" and the `statics tight` row of \"Cost scaling\"."]
+
+
 def _limit_section(st: CostStudy) -> list[str]:
+    if not st.has_order_sweep:
+        rows = [(QUANTITY_LABEL[q], st.bvp_self.get(q)) for q in QUANTITIES
+                if q == "curve_distance" or family(q, st.ref_values)]
+        return ["", "## Reference, relaxation and the VFIFE limit", "",
+                "Per quantity: the reference's own uncertainty (its change from the "
+                "next-coarser BVP tolerance, an upper bound).", "",
+                md_table(["quantity", "BVP reference uncertainty"], rows), "",
+                "**Needs `--full`:** the VFIFE Richardson order and limit (from the order "
+                "sweep at tight tolerances), the limit's difference from the BVP reference, "
+                "and the VFIFE relaxation errors (`element_length_tight_check`); this sweep "
+                f"ran none of them: {FULL_COMMAND}."]
     hmid = next((r.setting.value for r in st.runs
                  if r.setting.setting == "element_length_tight_check"), None)
     hm = f"{hmid:g} m" if hmid is not None else "the middle element length"
@@ -139,6 +168,12 @@ def _limit_section(st: CostStudy) -> list[str]:
 
 
 def _order_section(st: CostStudy) -> list[str]:
+    if not st.has_order_sweep:
+        return ["", "## Observed VFIFE order in element length", "",
+                f"**Needs `--full`:** the order is fitted on the order sweep at tight static "
+                "and creep tolerances (`element_length_tight`), which this sweep did not run "
+                f"(at the default tolerances the relaxation error hides the order): "
+                f"{FULL_COMMAND}."]
     lf = st.foundation_length
     lengths = (f"the bending boundary layer sqrt(EI/T) = {st.boundary_layer:.3g} m at the "
                "touchdown" + (f" and the foundation length (4 EI/k)^(1/4) = {lf:.3g} m of the "
@@ -202,6 +237,8 @@ def _scaling_section(st: CostStudy) -> list[str]:
                      ", ".join(f"{t:.3g}" for t in s["time"])))
     L.append(md_table(["run", "time ~ n^a, all meshes", "a, three finest meshes",
                        "steps ~ n^b (three finest)", "times [s] (coarse to fine)"], rows))
+    if not st.has_order_sweep:
+        L += ["", "The `statics tight` row (the cost of the order sweep) needs `--full`."]
     L += ["", "Statics by explicit dynamic relaxation: cost = steps x cost per step; the cost "
           "per step is proportional to the number of elements n, and the stable step to "
           "the element length (axial wave), so the number of steps grows like n at best "
@@ -235,12 +272,14 @@ def _plots(st: CostStudy, out: Path) -> None:
         ax.legend(fontsize=8)
     save(fig, out / "error_vs_time.png")
 
+    sweep = st.order_setting or "element_length"        # no order sweep: no fits
     el = sorted([r for r in st.runs if r.setting.method == "vfife"
-                 and r.setting.setting == st.order_setting and r.values],
+                 and r.setting.setting == sweep and r.values],
                 key=lambda r: r.setting.value)
     fig, axes = new_figure(1, 1, (8, 5.5))
     ax = axes[0, 0]
-    for i, (q, f) in enumerate(st.orders.items()):
+    curves = st.orders or {q: {"order": None} for q in QUANTITIES}
+    for i, (q, f) in enumerate(curves.items()):
         hs = [r.setting.value for r in el if r.errors.get(q)]
         es = [r.errors[q] for r in el if r.errors.get(q)]
         if not hs:
@@ -266,8 +305,10 @@ def _plots(st: CostStudy, out: Path) -> None:
                 ax.axvline(length, color="0.5", ls=ls, lw=1, label=f"{name} = {length:.3g} m")
     ax.set_xlabel("element length [m]")
     ax.set_ylabel("relative error vs the BVP reference (same model)")
-    ax.set_title(f"{st.scene.name}: VFIFE convergence in element length\n(`{st.order_setting}` "
-                 f"rows; dashed: fitted order over h <= {st.asymptotic:.3g} m)", fontsize=10)
+    fitted = (f"dashed: fitted order over h <= {st.asymptotic:.3g} m" if st.orders else
+              "default tolerances; the order fit needs --full")
+    ax.set_title(f"{st.scene.name}: VFIFE convergence in element length\n(`{sweep}` "
+                 f"rows; {fitted})", fontsize=10)
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=7)
     save(fig, out / "error_vs_element_length.png")
@@ -307,5 +348,7 @@ def index_row(d: Path):
         return None
     df = pd.read_csv(d / "runs.csv")
     conv = df["converged"].astype(bool).sum() if "converged" in df else len(df)
-    return (f"{len(df)} runs ({conv} converged)",
-            "accuracy vs cost: see the recommendation table", "reported")
+    fast = "element_length_tight" not in set(df["setting"])
+    return (f"{len(df)} runs ({conv} converged)" + (", fast sweep" if fast else ""),
+            "accuracy vs cost: see the recommendation table",
+            "reported" + (" (orders: `--full`)" if fast else ""))

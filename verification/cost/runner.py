@@ -17,6 +17,7 @@ from vfife.dynamics import run_dynamics
 
 from ..catalog import resolve
 from ..pipeline import vfife_equivalent
+from ..progress import with_fraction
 from ..quantities import raw_values, reference_depth
 from .analysis import analyse, cost_scaling
 from .errors import densified, distance, rel_errors
@@ -36,10 +37,12 @@ METHOD_ORDER = {"bvp": 0, "vfife": 1, "vfife-dyn": 2}
 
 
 class Progress:
-    """Runs done / total, elapsed and estimated remaining time on stderr."""
+    """Runs done / total, elapsed and estimated remaining time on stderr, or handed to
+    ``sink(message, fraction=f)`` (f: predicted share of the cost done; the display of
+    :mod:`verification.progress` then draws it)."""
 
-    def __init__(self, total: int, label: str, stream=None, weights=None):
-        self.total, self.label = total, label
+    def __init__(self, total: int, label: str, stream=None, weights=None, sink=None):
+        self.total, self.label, self.sink = total, label, sink
         self.stream = stream if stream is not None else sys.stderr
         self.t0 = time.perf_counter()
         self.done = 0
@@ -57,6 +60,10 @@ class Progress:
         wd = sum(self.weights[:self.done])
         wr = sum(self.weights[self.done:])
         rem = el / wd * wr if wd > 0 else float("nan")
+        if self.sink is not None:
+            self.sink(f"{self.done}/{self.total} runs ({what})",
+                      fraction=wd / (wd + wr) if wd + wr > 0 else None)
+            return
         msg = (f"[cost {self.label}] {self.done}/{self.total} runs, elapsed {el:.0f} s, "
                f"remaining ~{rem:.0f} s ({what})")
         if self.tty:
@@ -131,13 +138,14 @@ def run_setting(s: Setting, scene: Scene, repeats: int, compile_s: float,
 
 
 def study(scene: Scene, *, repeats: int = 3, quick: bool = False, element_lengths=None,
-          settings: list[Setting] | None = None, progress: bool = True,
-          stream=None) -> CostStudy:
+          settings: list[Setting] | None = None, progress=True,
+          stream=None, full: bool = False) -> CostStudy:
     """Run the study on ``scene`` (see :mod:`verification.cost`): ``settings`` (default
-    :func:`~verification.cost.settings.default_settings` of ``quick`` and
-    ``element_lengths``, the order sweep planned from the reference's asymptotic length),
+    :func:`~verification.cost.settings.default_settings` of ``quick``, ``element_lengths``
+    and ``full``, the order sweep planned from the reference's asymptotic length),
     each timed as the median of up to ``repeats`` runs; ``progress``: a progress line on
-    ``stream`` (default stderr)."""
+    ``stream`` (default stderr), False: none, or a callable ``progress(message,
+    fraction=None)`` told of each finished run (:mod:`verification.progress`)."""
     t_start = time.perf_counter()
     repeats = max(1, int(repeats))
     notes = []
@@ -148,8 +156,8 @@ def study(scene: Scene, *, repeats: int = 3, quick: bool = False, element_length
         notes.append(f"Both methods solve the fixed-ends equivalent of the scene ({eq.note}; "
                      f"the seabed is a property of the soil, the same for every run of both "
                      f"methods; conversion {eq.seconds:.2f} s, in no run's time).")
-    runs, ref = _solve_all(scene, fixed, settings, quick, element_lengths, repeats, compile_s,
-                           progress, stream)
+    runs, ref = _solve_all(scene, fixed, settings, (quick, element_lengths, full), repeats,
+                           compile_s, progress, stream)
     ref_sm = summarize(ref.profile)
     depth = reference_depth(fixed, ref_sm)
     ref_values = raw_values(ref.profile)
@@ -160,7 +168,9 @@ def study(scene: Scene, *, repeats: int = 3, quick: bool = False, element_length
         r.values = raw_values(r.profile, ref_sm)
         r.errors = rel_errors(r.values, ref_values, depth)
         r.errors["curve_distance"] = distance(dense, r.profile, depth)
-    st = CostStudy(scene, fixed, depth, repeats, runs, ref, ref_values, notes=notes)
+    st = CostStudy(scene, fixed, depth, repeats, runs, ref, ref_values, notes=notes,
+                   sweep="given" if settings is not None else
+                   "quick" if quick else "full" if full else "fast")
     if eq.paper is not None:
         psm = eq.paper.summary()
         st.paper_difference = {q: (psm[q] - ref_sm[q]) / abs(ref_sm[q])
@@ -171,16 +181,20 @@ def study(scene: Scene, *, repeats: int = 3, quick: bool = False, element_length
     return st
 
 
-def _solve_all(scene: Scene, fixed: Scene, settings, quick: bool, element_lengths,
-               repeats: int, compile_s: float, progress: bool, stream) -> tuple[list, Run]:
+def _solve_all(scene: Scene, fixed: Scene, settings, plan: tuple, repeats: int,
+               compile_s: float, progress, stream) -> tuple[list, Run]:
     """Every setting solved on ``fixed`` (BVP first); without given ``settings`` the VFIFE
-    ones are planned once the reference is known. Returns (runs, reference)."""
+    ones are planned once the reference is known, from ``plan`` = (quick,
+    element_lengths, full) of :func:`default_settings`. Returns (runs, reference)."""
     given = settings is not None
+    quick, element_lengths, full = plan
     if settings is None:
-        settings = default_settings(fixed, quick, element_lengths)
+        settings = default_settings(fixed, quick, element_lengths, full=full)
     settings = sorted(settings, key=lambda s: METHOD_ORDER[s.method])
     prog = Progress(len(settings), scene.name, stream,
-                    [predicted_cost(s) for s in settings]) if progress else None
+                    [predicted_cost(s) for s in settings],
+                    sink=with_fraction(progress) if callable(progress) else None) \
+        if progress else None
     runs: list[Run] = []
     static_cache: dict = {}
     ref = None
@@ -192,7 +206,7 @@ def _solve_all(scene: Scene, fixed: Scene, settings, quick: bool, element_length
             if not given:
                 asym = asymptotic_length(fixed, ref.profile)
                 settings = settings[:i] + [t for t in default_settings(
-                    fixed, quick, element_lengths, asym) if t.method != "bvp"]
+                    fixed, quick, element_lengths, asym, full) if t.method != "bvp"]
                 if prog:
                     prog.plan([predicted_cost(t) for t in settings[i:]])
                 s = settings[i]
@@ -214,10 +228,12 @@ def _reference(runs: list, scene: Scene) -> Run:
     return min(bvp_tol, key=lambda r: r.setting.value)
 
 
-def run_unit(scene_name: str, out: Path, note: str = "") -> str:
+def run_unit(scene_name: str, out: Path, note: str = "", full: bool = False) -> str:
     """The study of one built-in scene into ``out/scene_name`` (``note``: a sentence on
-    the timings, added to the report's notes); returns the log line."""
-    st = study(resolve(scene_name))
+    the timings, added to the report's notes; ``full``: the full sweep, ``--full``);
+    returns the log line."""
+    st = study(resolve(scene_name), progress=False,     # reproduce shows its own progress
+               full=full)
     if note:
         st.notes.append(note)
     write(st, out / scene_name)

@@ -35,6 +35,23 @@ TIGHT_CREEP = 1e-9
 CHECK_FACTOR = 10.0
 
 
+#: relaxation settings of the fast (default) sweep: coarse-mesh sequencing from 5 m, the
+#: cheapest way to the 2 m accuracy and a pick of the recommendation tables of every
+#: built-in scene; the other relaxation values are in the full sweep only
+FAST_RELAXATION = {"coarse_element_length": (5.0,)}
+#: what ``--full`` adds to the fast sweep, in words (the report says it): ~3/4 of the
+#: full study's time, most of it the order sweep at the tight creep tolerance
+FULL_ADDS = ("the BVP initial-mesh and node-cap rows, the other VFIFE relaxation settings "
+             "(time-step safety, static tolerance, coarse meshes of 2 and 20 m, "
+             "rotational-inertia scale) and the order sweep at tight tolerances "
+             "(`element_length_tight`) with its relaxation check "
+             "(`element_length_tight_check`)")
+#: what the fast sweep runs, in words (the report says it)
+FAST_SWEEP = ("the BVP tolerance sweep, the VFIFE element-length sweep at the default "
+              "tolerances, mesh sequencing from a 5 m coarse mesh at 2 m, and one second "
+              "of dynamics per element length")
+
+
 @dataclass
 class Setting:
     """One run of the study: ``solve_kwargs`` go to the solver's ``solve``,
@@ -48,19 +65,25 @@ class Setting:
 
 
 def default_settings(scene: Scene, quick: bool = False, element_lengths=None,
-                     asymptotic: float = math.inf) -> list[Setting]:
-    """The runs of the study (``quick``: a coarse subset for tests and development).
-    ``asymptotic`` [m] (see :func:`verification.cost.touchdown.asymptotic_length`): the
-    order sweep (``element_length_tight``) runs :data:`ORDER_LENGTHS` (``element_lengths``
-    when given), and finer ones of ELEMENT_LENGTHS only while fewer than three of its
-    lengths are within the asymptotic range."""
+                     asymptotic: float = math.inf, full: bool = False) -> list[Setting]:
+    """The runs of the study. By default the fast sweep (:data:`FAST_SWEEP`): the BVP
+    tolerance sweep (its finest is the reference), the VFIFE element-length sweep at the
+    default tolerances with :data:`FAST_RELAXATION` and one second of dynamics per element
+    length. ``full`` (``--full``) adds the dear rows (:data:`FULL_ADDS`): the BVP initial
+    mesh and node cap, every VFIFE relaxation setting, and the order sweep at tight
+    tolerances (``element_length_tight``) with its relaxation check. ``quick``: a coarse
+    subset for tests and development. ``asymptotic`` [m] (see
+    :func:`verification.cost.touchdown.asymptotic_length`): the order sweep runs
+    :data:`ORDER_LENGTHS` (``element_lengths`` when given), and finer ones of
+    ELEMENT_LENGTHS only while fewer than three of its lengths are within the asymptotic
+    range."""
     out: list[Setting] = []
     hs = tuple(element_lengths) if element_lengths else (
         (20.0, 10.0, 5.0) if quick else ELEMENT_LENGTHS)
     tols = (1e-3, 1e-6, 1e-8) if quick else BVP_TOLERANCES
     for t in tols:
         out.append(Setting("bvp", "tolerance", t, {"tolerance": t}))
-    if not quick:
+    if full and not quick:
         for n in (50, 100, 400, 1600):
             out.append(Setting("bvp", "initial_nodes", n, {"tolerance": 1e-6, "initial_nodes": n}))
         for n in (300, 600, 1200, 30000):
@@ -69,8 +92,11 @@ def default_settings(scene: Scene, quick: bool = False, element_lengths=None,
         out.append(Setting("vfife", "element_length", h, {"element_length": h}))
     hmid = 2.0 if not quick else hs[-1]
     if not quick:
-        out += _relaxation_settings(scene, hmid)
-        out += _order_settings(hs, hmid, element_lengths, asymptotic)
+        relax = _relaxation_settings(scene, hmid)
+        out += relax if full else [s for s in relax
+                                   if s.value in FAST_RELAXATION.get(s.setting, ())]
+        if full:
+            out += _order_settings(hs, hmid, element_lengths, asymptotic)
         for h in hs:
             out.append(Setting("vfife-dyn", "dynamics_1s_element_length", h,
                                {"element_length": h}))

@@ -1,0 +1,177 @@
+"""Is a result inside the model it was solved with? Checks every method applies to its
+own result, before solving (resolution, motion) and after (strain, water, seabed,
+compression, finiteness).
+
+These are checks of inputs and results, not physics: each method still solves its own
+equations. A check before solving raises :class:`~riser.errors.SceneError` (exit 2, the
+key and the allowed range); a check after solving returns *named* warnings, each a string
+``"name: what and where"`` that goes into ``SolveResult.warnings`` (``summary.json`` and
+the console; ``--strict`` turns them into exit 1). The names:
+
+- ``axial_strain``: T/EA beyond the line type's ``max_strain`` (default 1 %: a linear EA
+  is a small-strain model, a steel pipe yields at ~0.2 %);
+- ``above_surface``: the line above the sea surface (y > water_depth): the model is fully
+  submerged (no splash zone, no change of buoyancy);
+- ``below_seabed``: the line below y = 0 where nothing holds it (no ``[seabed]``, or the
+  rigid seabed of the Wang forms beyond the touchdown), or deeper in an elastic seabed
+  than the line's diameter (a linear Winkler law no longer describes the soil);
+- ``compression``: effective compression in a line type with ``compression = false``
+  (chain, rope, slack cable);
+- ``first_segment_length``: form (b) solved a suspended length far from the file's.
+
+The solvers add two names of their own: ``resolution`` (VFIFE elements long against the
+bending lengths) and ``ignored_input`` (a key the method does not model).
+
+Conventions: SI units; y up from the seabed (y = 0), the surface at ``water_depth``; s the
+unstretched arc length from the bottom end.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .errors import SceneError
+from .profile import Profile
+from .scene import Scene
+
+#: the fewest elements a VFIFE line and each of its segments may have: fewer cannot carry
+#: the catenary shape (a 2,800 m SCR in 900 m elements put its touchdown at x = 0) nor a
+#: segment's own weight and stiffness
+MIN_ELEMENTS_LINE = 10
+MIN_ELEMENTS_SEGMENT = 2
+#: effective compression below this fraction of the largest tension is numerical noise
+COMPRESSION_NOISE = 1e-3
+#: form (b): a solved first-segment length this far (fraction) from the file's is warned
+FIRST_SEGMENT_CHANGE = 0.1
+
+
+def check_resolution(scene: Scene, element_length: float, *, source: str | None = None,
+                     key: str = "vfife.element_length") -> None:
+    """Refuse (SceneError) an element length [m] too coarse for the line and its
+    segments: at least :data:`MIN_ELEMENTS_LINE` elements on the line and
+    :data:`MIN_ELEMENTS_SEGMENT` on every segment."""
+    src = source or scene.source
+    total = scene.total_length
+    if element_length > total / MIN_ELEMENTS_LINE:
+        raise SceneError(src, key, f"must be <= {total / MIN_ELEMENTS_LINE:.4g} m (at least "
+                         f"{MIN_ELEMENTS_LINE} elements on the {total:g} m line, to carry its "
+                         f"shape), got {element_length:g}")
+    i = int(np.argmin([seg.length for seg in scene.segments]))
+    shortest = scene.segments[i].length
+    if element_length > shortest / MIN_ELEMENTS_SEGMENT:
+        raise SceneError(src, key, f"must be <= {shortest / MIN_ELEMENTS_SEGMENT:.4g} m (at "
+                         f"least {MIN_ELEMENTS_SEGMENT} elements on segments[{i}], "
+                         f"{shortest:g} m long), got {element_length:g}")
+
+
+def check_motion(scene: Scene, hang_off_height: float) -> None:
+    """Refuse (SceneError) a prescribed hang-off motion that lifts the hang-off, at height
+    ``hang_off_height`` [m] in the static state, out of the water (the model is fully
+    submerged)."""
+    dyn = scene.dynamics
+    if dyn is None or dyn.top_motion is None or dyn.top_motion.axis != "y":
+        return
+    if scene.water_depth is None:
+        return
+    tm = dyn.top_motion
+    up = tm.amplitude if tm.times is None else max(tm.displacements)
+    key = "dynamics.top_motion." + ("amplitude" if tm.times is None else "displacements")
+    if hang_off_height + up > scene.water_depth:
+        raise SceneError(scene.source, key, f"lifts the hang-off from y = {hang_off_height:.6g} "
+                         f"m to {hang_off_height + up:.6g} m, above the sea surface "
+                         f"(water_depth {scene.water_depth:g} m; the model is fully "
+                         f"submerged): must be <= {scene.water_depth - hang_off_height:.4g} m, "
+                         f"got {up:g}")
+
+
+def nonfinite(profile: Profile) -> str | None:
+    """The reason a profile cannot be a result (NaN/inf in it), else None."""
+    for name in ("s", "x", "y", "z", "tension", "moment"):
+        v = getattr(profile, name)
+        if v is not None and not np.all(np.isfinite(v)):
+            return f"non-finite {name} in the result (NaN/inf): the solution is not valid"
+    return None
+
+
+def _segment_index(scene: Scene, s: np.ndarray, lengths=None) -> np.ndarray:
+    """Index of the segment holding each arc length s [m] (``lengths``: the segment
+    lengths as solved, default the scene's)."""
+    ends = np.cumsum(lengths if lengths is not None else [g.length for g in scene.segments])
+    return np.clip(np.searchsorted(ends, s, side="left"), 0, len(ends) - 1)
+
+
+def _where(s: float) -> str:
+    return f"at s = {s:.1f} m"
+
+
+def line_warnings(scene: Scene, s: np.ndarray, y_min: np.ndarray, y_max: np.ndarray,
+                  t_min: np.ndarray, t_max: np.ndarray, lengths=None,
+                  when: str = "") -> list[str]:
+    """Named warnings for a line whose stations at arc lengths ``s`` [m] reach heights
+    ``y_min``..``y_max`` [m] and effective tensions ``t_min``..``t_max`` [N] (one state:
+    equal pairs; a dynamic run: the extremes over time). ``when``: e.g. ' during the
+    dynamics'."""
+    out = []
+    seg = _segment_index(scene, s, lengths)
+    lts = [scene.line_types[g.line_type] for g in scene.segments]
+    scale = max(float(np.max(np.abs(t_max))), float(np.max(np.abs(t_min))), 1.0)
+    if scene.axial_model == "extensible":
+        ea = np.array([lts[i].axial_stiffness for i in seg])
+        lim = np.array([lts[i].max_strain for i in seg])
+        strain = np.maximum(np.abs(t_max), np.abs(t_min)) / ea
+        j = int(np.argmax(strain / lim))
+        if strain[j] > lim[j]:
+            out.append(f"axial_strain: T/EA = {100 * strain[j]:.3g} % {_where(s[j])}{when}, "
+                       f"beyond the {100 * lim[j]:g} % of line type "
+                       f"{lts[seg[j]].name!r} (max_strain; a linear EA is a small-strain "
+                       "model): check the line length, the ends and axial_stiffness")
+    if scene.water_depth is not None:
+        j = int(np.argmax(y_max))
+        if y_max[j] > scene.water_depth * (1.0 + 1e-9):
+            out.append(f"above_surface: the line reaches y = {y_max[j]:.6g} m {_where(s[j])}"
+                       f"{when}, above the sea surface (water_depth {scene.water_depth:g} m); "
+                       "the model is fully submerged")
+    j = int(np.argmin(y_min))
+    depth = -float(y_min[j])
+    tol = 1e-6 * max(scene.total_length, 1.0)
+    if scene.seabed_model == "elastic":
+        D = lts[seg[j]].outer_diameter
+        if depth > D:
+            out.append(f"below_seabed: {depth:.3g} m into the elastic seabed {_where(s[j])}"
+                       f"{when}, more than the line's diameter {D:g} m: a linear Winkler "
+                       "seabed does not describe that; check [seabed] stiffness")
+    elif depth > tol:
+        why = ("the scene has no [seabed]" if scene.seabed_model is None else
+               "the rigid seabed of this end form holds only the touchdown")
+        out.append(f"below_seabed: the line passes {depth:.3g} m below the seabed y = 0 "
+                   f"{_where(s[j])}{when}; {why}")
+    weak = np.array([not lts[i].compression for i in seg])
+    if np.any(weak):
+        tw = np.where(weak, t_min, np.inf)
+        j = int(np.argmin(tw))
+        if tw[j] < -COMPRESSION_NOISE * scale:
+            out.append(f"compression: effective tension {tw[j] / 1e3:.4g} kN {_where(s[j])}"
+                       f"{when} in line type {lts[seg[j]].name!r}, which cannot carry "
+                       "compression (compression = false)")
+    return out
+
+
+def profile_warnings(scene: Scene, profile: Profile, lengths=None) -> list[str]:
+    """Named warnings for a static profile (see :func:`line_warnings`)."""
+    return line_warnings(scene, profile.s, profile.y, profile.y, profile.tension,
+                         profile.tension, lengths)
+
+
+def first_segment_warnings(scene: Scene, solved: float) -> tuple[str, list[str]]:
+    """Form (b): a sentence saying the first segment's suspended length was solved
+    [m], and a named warning when it is far from the file's."""
+    given = scene.segments[0].length
+    diff = solved - given
+    note = (f"segments[0] suspended length solved: {solved:.3f} m (the file gives "
+            f"{given:g} m; {diff:+.3f} m, {100 * diff / given:+.2f} %)")
+    warn = []
+    if abs(diff) > FIRST_SEGMENT_CHANGE * given:
+        warn.append(f"first_segment_length: {note}, more than {100 * FIRST_SEGMENT_CHANGE:g} "
+                    "% off: check the hang-off angle (hang_off_angle_from_horizontal_deg or "
+                    "_from_vertical_deg) and height")
+    return note, warn
