@@ -252,6 +252,18 @@ def test_cli_has_cost_command():
     assert not build_parser().parse_args(["reproduce", "all"]).full
 
 
+def test_reproduce_schedules_the_cost_units_by_their_sweep():
+    """``reproduce all`` starts the longest units first: with ``--full`` the three cost
+    studies, by default (the fast sweep) the paper reproductions and the stress suite."""
+    from verification import studies
+    for full in (False, True):
+        order = studies.units("all", full)
+        secs = [studies.study(s).unit_seconds(u, full) for s, u in order]
+        assert secs == sorted(secs, reverse=True)
+    assert [s for s, _ in studies.units("all", full=True)[:3]] == ["cost"] * 3
+    assert "cost" not in [s for s, _ in studies.units("all")[:3]]
+
+
 def _key(s):
     return (s.method, s.setting, s.value)
 

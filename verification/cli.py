@@ -104,7 +104,7 @@ def cmd_solve(args) -> int:
 
 def cmd_reproduce(args) -> int:
     from .index import write_index
-    from .studies import run_unit, study, units
+    from .studies import WORKER_ENV, run_unit, study, units
     base = Path(args.out) if args.out else None
 
     def out_of(study_name: str) -> str:
@@ -132,6 +132,8 @@ def cmd_reproduce(args) -> int:
                 prog.log(line)
                 track.done(i)
         else:
+            for key, value in WORKER_ENV.items():   # before the workers start (spawn)
+                os.environ.setdefault(key, value)
             ctx = mp.get_context("spawn")
             with cf.ProcessPoolExecutor(max_workers=jobs, mp_context=ctx,
                                         **prog.worker_options(ctx)) as pool:

@@ -268,5 +268,10 @@ def index_row(d: Path):
     return "1 scene", text, "pass" if not failed else "fail"
 
 
-STUDY = Study("compare", COMPARE_SCENES, run_unit, index_row)
+#: measured wall times [s] of the units in ``reproduce all`` (2 processes, 2 cores)
+STUDY = Study("compare", COMPARE_SCENES, run_unit, index_row,
+              seconds={"yu2021-a4": 12, "wang2014-current-neg1p5": 7, "wang2014-current-neg0p75": 7,
+                       "wang2014-current-0p75": 7, "wang2014-current-1p5": 7, "yu2021-a2": 6,
+                       "yu2021-a2-sheared": 6, "yu2021-a3": 5, "wang2014-baseline": 4,
+                       "yu2021-a1": 2, "scr-steel": 2})
 

@@ -13,7 +13,7 @@ ticker thread keeps the elapsed time moving while a call without a callback runs
 BVP's ``solve_bvp``). It writes nothing when stderr is not a terminal or when ``quiet``;
 normal output goes through :meth:`Progress.log`, which clears the line first.
 
-Also here: :func:`with_fraction` (calls a one-argument callback correctly),
+Also here (with :func:`riser.callbacks.with_fraction`, re-exported):
 :func:`scoped` (one part of a longer job), :class:`UnitTracker` (``k/N units`` of
 ``reproduce``, weighted by the studies' declared seconds) and the forwarding of the
 output of worker processes and of in-process studies through :meth:`Progress.log`.
@@ -22,7 +22,6 @@ output of worker processes and of in-process studies through :meth:`Progress.log
 from __future__ import annotations
 
 import contextlib
-import inspect
 import os
 import queue as queue_mod
 import shutil
@@ -30,25 +29,11 @@ import sys
 import threading
 import time
 
+from riser.callbacks import with_fraction
+
 #: seconds between two redraws (~5 per second)
 INTERVAL = 0.2
 _SPIN = "-\\|/"
-
-
-def with_fraction(progress):
-    """``progress`` callable as ``f(message, fraction=None)``: itself when it takes a
-    ``fraction`` keyword (or ``**kwargs``), else a wrapper dropping the fraction; None
-    stays None. (The rule of :func:`vfife.dynamics.with_fraction`, repeated here so that
-    the command line starts without importing the solvers.)"""
-    if progress is None:
-        return None
-    try:
-        params = inspect.signature(progress).parameters.values()
-    except (TypeError, ValueError):
-        params = ()
-    if any(p.name == "fraction" or p.kind is p.VAR_KEYWORD for p in params):
-        return progress
-    return lambda message, fraction=None: progress(message)
 
 
 def scoped(progress, prefix: str, lo: float = 0.0, hi: float | None = None):

@@ -204,5 +204,5 @@ def index_row(d: Path):
 
 
 STUDY = Study("stress", (None,), lambda unit, out, note, full: run(out), index_row,
-              seconds={None: 250})
+              seconds={None: 129})
 

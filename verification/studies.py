@@ -21,6 +21,11 @@ STUDY_MODULES = {"wang2014": "verification.wang2014", "yu2021": "verification.yu
                  "cost": "verification.cost"}
 #: the study names (``riser-verify reproduce NAME``)
 STUDIES = tuple(STUDY_MODULES)
+#: environment of the worker processes of ``reproduce --jobs N`` (N > 1), unless already
+#: set: one BLAS thread each, the workers being the parallelism (OpenBLAS threads of
+#: ``solve_bvp`` then compete with the other worker: ``reproduce all`` on 2 cores spent
+#: 536 s of CPU with them, 513 s without, the same numbers)
+WORKER_ENV = {"OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
 
 
 def study(name: str) -> Study:

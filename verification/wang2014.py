@@ -415,5 +415,5 @@ def index_row(d: Path):
 
 
 STUDY = Study("wang2014", (None,), lambda unit, out, note, full: run(out), index_row,
-              seconds={None: 120})
+              seconds={None: 103})
 

@@ -32,7 +32,7 @@ import numpy as np
 import pandas as pd
 from scipy.optimize import brentq
 
-from riser.errors import SolveFailed
+from riser.errors import SolveFailed, UnsupportedSceneError
 from riser.scene import Current, Ends, Scene
 
 from .catalog import resolve
@@ -121,12 +121,17 @@ def with_buoyancy(scene: Scene, factors: dict[int, float]) -> Scene:
     return scene.replace(segments=tuple(segs))
 
 
-def calibrate_hang_off_x(log=print) -> float:
-    """X_h [m] such that A3 without current hangs off at 4.372 deg from vertical (BVP)."""
+def calibrate_hang_off_x(log=print, solved: list | None = None) -> float:
+    """X_h [m] such that A3 without current hangs off at 4.372 deg from vertical (BVP).
+    ``solved``: a list to append each solve to, as (scene, 'bvp', result) (brentq returns
+    a point it evaluated: the A3 case is among them)."""
     a3 = resolve("yu2021-a3")
 
     def resid(xh):
-        res = solve_scene(with_hang_off_x(a3, xh), "bvp")
+        sc = with_hang_off_x(a3, xh)
+        res = solve_scene(sc, "bvp")
+        if solved is not None:
+            solved.append((sc, "bvp", res))
         if not res.converged:
             raise SolveFailed("bvp", res.status, f"calibration: bvp failed at X_h = {xh}: "
                               f"{res.message}")
@@ -186,21 +191,18 @@ def run(out_dir: str | Path = "reports/yu2021", methods=("bvp", "vfife"), log=pr
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     t0 = time.perf_counter()
-    xh = calibrate_hang_off_x(log)
+    solved = []     # (scene, method, result): current 0 is A3, moved up 0 is gap 100
+    xh = calibrate_hang_off_x(log, solved)
     stored = resolve("yu2021-a3").ends.hang_off[0]
     rows, results, timing = [], {}, {m: 0.0 for m in methods}
-    solved = []     # (scene, method, result): current 0 is A3, moved up 0 is gap 100
     for study, case, sc in cases(xh):
         q = {}
         for m in methods:
             t = time.perf_counter()
-            res = next((r for s, k, r in solved if k == m and s == sc), None)
-            if res is None:
-                res = solve_scene(sc, m, element_length=element_length)
-                solved.append((sc, m, res))
+            res, why = _solve(sc, m, element_length, solved)
             timing[m] += time.perf_counter() - t
-            if not res.converged:
-                log(f"yu2021: {m} failed on {study}/{case}: {res.message}")
+            if res is None:
+                log(f"yu2021: {m} failed on {study}/{case}: {why}")
                 q[m] = {}
                 continue
             results[(study, case, m)] = (res, sc)
@@ -221,6 +223,20 @@ def run(out_dir: str | Path = "reports/yu2021", methods=("bvp", "vfife"), log=pr
     _figures(results, out, methods)
     _report(df, out, xh, stored, timing, time.perf_counter() - t0, methods)
     return df
+
+
+def _solve(sc: Scene, method: str, element_length, solved: list):
+    """(result, '') of ``sc`` with ``method``, taken from ``solved`` (scene, method,
+    result) when solved before, else solved and added to it; (None, reason) when it did
+    not converge or was refused before solving."""
+    res = next((r for s, k, r in solved if k == method and s == sc), None)
+    if res is None:
+        try:
+            res = solve_scene(sc, method, element_length=element_length)
+        except UnsupportedSceneError as exc:
+            return None, str(exc)
+        solved.append((sc, method, res))
+    return (res, "") if res.converged else (None, res.message)
 
 
 def _value(q: dict, name: str, study: str, results: dict, method: str):
@@ -347,5 +363,5 @@ def index_row(d: Path):
 
 
 STUDY = Study("yu2021", (None,), lambda unit, out, note, full: run(out), index_row,
-              seconds={None: 90})
+              seconds={None: 94})
 

@@ -18,32 +18,18 @@ at the output times go to ``states.npz`` (arrays t (k,), s (n,), x (k, n, 3), v 
 
 from __future__ import annotations
 
-import inspect
 import math
 import time
 
 import numpy as np
+
+from riser.callbacks import with_fraction
 
 from .model import Model, max_speed_hint
 from .timestep import choose_step, critical_steps
 
 #: the dynamics reports its progress this many times over the run (and at its end)
 PROGRESS_REPORTS = 100
-
-
-def with_fraction(progress):
-    """``progress`` callable as ``f(message, fraction=None)``: the progress callbacks
-    take ``(message)`` or ``(message, fraction=f)`` (f: fraction of the run done); a
-    one-argument callable is wrapped so that the fraction is dropped. None stays None."""
-    if progress is None:
-        return None
-    try:
-        params = inspect.signature(progress).parameters.values()
-    except (TypeError, ValueError):
-        params = ()
-    if any(p.name == "fraction" or p.kind is p.VAR_KEYWORD for p in params):
-        return progress
-    return lambda message, fraction=None: progress(message)
 
 
 def top_displacement(scene, t: np.ndarray) -> np.ndarray:

@@ -142,7 +142,7 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
     out-of-balance force / one element's weight (default ``[vfife] static_tolerance``,
     1e-3); progress: optional callable, ``progress(message)`` or ``progress(message,
     fraction=None)`` (told of the statics' relaxation, and of the dynamics with the
-    fraction of the run done; see :func:`vfife.dynamics.with_fraction`).
+    fraction of the run done; see :func:`riser.callbacks.with_fraction`).
     Raises UnsupportedSceneError for scenes without fixed ends, SceneError for an override
     outside the range of its scene key. Never returns NaN results: a failed run has a
     status other than converged (diverged, not_converged) and profile None, with the reason

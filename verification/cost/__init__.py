@@ -63,8 +63,9 @@ __all__ = ["COST_SCENES", "STUDY", "CostStudy", "Run", "Setting", "default_setti
            "recommendations", "study", "write"]
 
 #: the study of the registry (:mod:`verification.studies`): one unit per scene; measured
-#: wall times [s] of ``reproduce all`` on 2 processes of this 2-core machine
+#: wall times [s] of ``reproduce all`` on 2 processes of this 2-core machine, fast sweep
+#: and (``--full``) full sweep
 STUDY = Study("cost", COST_SCENES, run_unit, index_row,
-              seconds={"yu2021-a2-sheared": 294, "wang2014-baseline": 263, "yu2021-a3": 244},
+              seconds={"yu2021-a2-sheared": 46, "yu2021-a3": 42, "wang2014-baseline": 26},
               full_seconds={"yu2021-a2-sheared": 294, "wang2014-baseline": 263,
                             "yu2021-a3": 244})

@@ -120,10 +120,11 @@ def _sweep_lines(st: CostStudy) -> list[str]:
         return []
     ran = FAST_SWEEP if st.sweep == "fast" else "a coarse subset (`--quick`, development)"
     return [f"- **Fast sweep, not the full study.** This report ran {ran}. The full sweep, "
-            f"{FULL_COMMAND}, adds {FULL_ADDS}. Without them, these need `--full` and show no numbers here: the `self_*` errors of the "
-            "VFIFE runs (against VFIFE's own Richardson limit), the VFIFE columns of "
-            "\"Reference, relaxation and the VFIFE limit\", the \"Observed VFIFE order in "
-            "element length\" and the `statics tight` row of \"Cost scaling\"."]
+            f"{FULL_COMMAND}, adds {FULL_ADDS}. So these need `--full` and show no numbers "
+            "here: the `self_*` errors of the VFIFE runs (against VFIFE's own Richardson "
+            "limit), the VFIFE columns of \"Reference, relaxation and the VFIFE limit\", the "
+            "\"Observed VFIFE order in element length\" and the `statics tight` row of \"Cost "
+            "scaling\"."]
 
 
 def _limit_section(st: CostStudy) -> list[str]:
