@@ -155,7 +155,7 @@ def _read_line_type(t: Table, name: str) -> LineType:
         mass = t.number("mass_per_length", gt=0.0, le=LIMITS["mass_per_length"], unit="kg/m")
     else:
         rho = t.number("density", gt=0.0, le=LIMITS["density"], unit="kg/m3")
-        mass = rho * math.pi / 4.0 * (D * D - d * d)
+        mass = rho * (math.pi / 4.0 * (D * D - d * d))       # density x the wall's area
 
     lo, hi = LIMITS["youngs_modulus"]
     E = t.number("youngs_modulus", None, ge=lo, le=hi, unit="Pa")

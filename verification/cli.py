@@ -260,7 +260,7 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--out", help="output directory (default reports/NAME)")
     s.add_argument("--full", action="store_true",
                    help="the cost study's full sweep (order sweep at tight tolerances, every "
-                        "relaxation setting): ~15 min more on 2 cores")
+                        "relaxation setting): 4-5 min a cost scene instead of 0.5-1")
     s.set_defaults(func=cmd_reproduce)
     s = sub.add_parser("compare", help="solve a scene with both methods and compare them")
     s.add_argument("scene", help="built-in scene name or path to a .toml scene file")
@@ -292,7 +292,8 @@ def build_parser() -> argparse.ArgumentParser:
                    help="coarse subset of settings (development)")
     s.add_argument("--full", action="store_true",
                    help="full sweep: adds the order sweep at tight tolerances (the order fit, "
-                        "the VFIFE limit) and every relaxation setting; ~4x the time")
+                        "the VFIFE limit) and every relaxation setting; 6-10x the time (4-5 "
+                        "min a built-in scene)")
     s.set_defaults(func=cmd_cost)
     for name in ("solve", "compare", "stress", "cost", "reproduce"):   # also after the command
         sub.choices[name].add_argument("-q", "--quiet", action="store_true",

@@ -22,9 +22,9 @@ STUDY_MODULES = {"wang2014": "verification.wang2014", "yu2021": "verification.yu
 #: the study names (``riser-verify reproduce NAME``)
 STUDIES = tuple(STUDY_MODULES)
 #: environment of the worker processes of ``reproduce --jobs N`` (N > 1), unless already
-#: set: one BLAS thread each, the workers being the parallelism (OpenBLAS threads of
-#: ``solve_bvp`` then compete with the other worker: ``reproduce all`` on 2 cores spent
-#: 536 s of CPU with them, 513 s without, the same numbers)
+#: set: one BLAS thread each, the workers being the parallelism (the OpenBLAS threads of
+#: ``solve_bvp`` compete with the other worker: ``reproduce all`` on 2 cores took 317 s
+#: and 536 s of CPU with them, 308 s and 513 s without, with the same numbers)
 WORKER_ENV = {"OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
 
 

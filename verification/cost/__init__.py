@@ -22,7 +22,7 @@ Protocol
   (1e-2 ... 1e-8), initial mesh size, node cap. Every setting not swept keeps its default.
 - Fast and full sweep. ``riser-verify cost SCENE`` and ``reproduce all`` run the fast
   sweep (:data:`~verification.cost.settings.FAST_SWEEP`: BVP tolerances, VFIFE element
-  lengths, coarse mesh 5 m, dynamics; ~1/4 of the time); ``--full`` adds the rest
+  lengths, coarse mesh 5 m, dynamics; ~1/6 of the time); ``--full`` adds the rest
   (:data:`~verification.cost.settings.FULL_ADDS`), which the order fit, the VFIFE limit
   and the relaxation errors need: without it the report says so and shows none of them.
 - Timing: one global warm-up (Numba compilation, or its on-disk cache load, reported as
@@ -67,5 +67,5 @@ __all__ = ["COST_SCENES", "STUDY", "CostStudy", "Run", "Setting", "default_setti
 #: and (``--full``) full sweep
 STUDY = Study("cost", COST_SCENES, run_unit, index_row,
               seconds={"yu2021-a2-sheared": 46, "yu2021-a3": 42, "wang2014-baseline": 26},
-              full_seconds={"yu2021-a2-sheared": 294, "wang2014-baseline": 263,
+              full_seconds={"yu2021-a2-sheared": 303, "wang2014-baseline": 268,
                             "yu2021-a3": 244})

@@ -39,8 +39,9 @@ CHECK_FACTOR = 10.0
 #: cheapest way to the 2 m accuracy and a pick of the recommendation tables of every
 #: built-in scene; the other relaxation values are in the full sweep only
 FAST_RELAXATION = {"coarse_element_length": (5.0,)}
-#: what ``--full`` adds to the fast sweep, in words (the report says it): ~3/4 of the
-#: full study's time, most of it the order sweep at the tight creep tolerance
+#: what ``--full`` adds to the fast sweep, in words (the report says it): ~85 % of the
+#: full study's time (built-in scenes: fast 26-46 s, full 244-303 s in ``reproduce``),
+#: most of it the order sweep at the tight creep tolerance
 FULL_ADDS = ("the BVP initial-mesh and node-cap rows, the other VFIFE relaxation settings "
              "(time-step safety, static tolerance, coarse meshes of 2 and 20 m, "
              "rotational-inertia scale) and the order sweep at tight tolerances "
