@@ -56,8 +56,9 @@ class DynamicsResult:
     """Arrays of a dynamic run (VFIFE), for programmatic use; the files
     ``timeseries.csv``, ``envelope.csv`` and ``states.npz`` hold the same.
 
-    timeseries : column -> (k,) array, sampled every output interval (``time`` [s], ``hang_off_tension`` [N], ``max_moment`` [N m] and its
-        ``max_moment_s`` [m], ``hang_off_x``/``_y``/``_z`` [m]).
+    timeseries : column -> (k,) array, sampled every output interval (``time`` [s],
+        ``hang_off_tension`` [N], ``max_moment`` [N m] and its ``max_moment_s`` [m],
+        ``hang_off_x``/``_y``/``_z`` [m]).
     envelope : column -> (n,) array along the line (``s`` [m], extremes over the run).
     states : ``t`` (k,), ``s`` (n,), ``x`` (k, n, 3) [m], ``v`` (k, n, 3) [m/s].
     """

@@ -155,8 +155,8 @@ class Ends:
     - 'tdp_tension': touchdown at the origin with tension ``tdp_tension`` [N], top free;
     - 'hang_off_angle': hang-off height [m] and angle from the horizontal [deg] given
       (``hang_off_angle_deg``; the file may give it from the vertical, converted on
-      reading), the first segment's suspended length solved (``first_segment_given`` [m]:
-      its length in the file);
+      reading), the first segment's suspended length solved (its length in the file is
+      ``segments[0].length``);
     - 'fixed': anchor and hang-off positions (x, y) [m] given.
     """
 

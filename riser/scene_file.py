@@ -144,6 +144,8 @@ def _read_line_type(t: Table, name: str) -> LineType:
     D = t.number("outer_diameter", gt=0.0, le=LIMITS["diameter"], unit="m")
     d = _read_bore(t, D)
     wall = "wall_thickness or inner_diameter (the wall's area)"
+    area = 0.0 if d is None else math.pi / 4.0 * (D * D - d * d)
+    inertia = 0.0 if d is None else math.pi / 64.0 * (D ** 4 - d ** 4)
     if t.has("density") and t.has("mass_per_length"):
         raise t.error("mass_per_length", "give either density or mass_per_length, not both")
     if d is None and t.has("density"):
@@ -155,15 +157,13 @@ def _read_line_type(t: Table, name: str) -> LineType:
         mass = t.number("mass_per_length", gt=0.0, le=LIMITS["mass_per_length"], unit="kg/m")
     else:
         rho = t.number("density", gt=0.0, le=LIMITS["density"], unit="kg/m3")
-        mass = rho * (math.pi / 4.0 * (D * D - d * d))       # density x the wall's area
+        mass = rho * area
 
     lo, hi = LIMITS["youngs_modulus"]
     E = t.number("youngs_modulus", None, ge=lo, le=hi, unit="Pa")
     if E is not None and d is None:
         raise t.error("youngs_modulus", f"needs {wall}; give axial_stiffness [N] and "
                       "bending_stiffness [N m2] instead")
-    area = 0.0 if d is None else math.pi / 4.0 * (D * D - d * d)
-    inertia = 0.0 if d is None else math.pi / 64.0 * (D ** 4 - d ** 4)
     smax = LIMITS["stiffness"]
     if E is None and not t.has("bending_stiffness"):
         raise t.error("bending_stiffness", "required when youngs_modulus is not given")

@@ -37,6 +37,16 @@ def _progress(args, label: str) -> Progress:
     return Progress(label, quiet=getattr(args, "quiet", False))
 
 
+def _out(args, default: Path, names: tuple[str, ...]) -> Path:
+    """The output folder: ``--out`` (cleared before the scene was read, so that bad input
+    leaves nothing stale) or ``default`` (known once the scene is), cleared now of the
+    files ``names`` an earlier run left."""
+    if args.out:
+        return Path(args.out)
+    outdir.clear(default, names)
+    return default
+
+
 def cmd_scenes(args) -> int:
     items = list_builtin()
     width = max(len(n) for n, _ in items)
@@ -78,8 +88,7 @@ def cmd_solve(args) -> int:
     from . import pipeline
     outdir.clear(args.out, outdir.SOLVE)      # before reading: bad input leaves nothing stale
     scene = resolve(args.scene)
-    out = Path(args.out) if args.out else Path("out") / scene.name / args.method
-    outdir.clear(out, outdir.SOLVE)
+    out = _out(args, Path("out") / scene.name / args.method, outdir.SOLVE)
     _check_overrides(scene, args)
     with _progress(args, f"solve {scene.name} [{args.method}]") as prog:
         res = pipeline.solve_scene(scene, args.method, tolerance=args.tolerance,
@@ -155,8 +164,7 @@ def cmd_compare(args) -> int:
     from . import compare, compare_report
     outdir.clear(args.out, outdir.COMPARE)
     scene = resolve(args.scene)
-    out = Path(args.out) if args.out else Path("out") / scene.name / "compare"
-    outdir.clear(out, outdir.COMPARE)
+    out = _out(args, Path("out") / scene.name / "compare", outdir.COMPARE)
     _check_overrides(scene, args)
     with _progress(args, f"compare {scene.name}") as prog:
         comp = compare.compare(scene, element_length=args.element_length,
@@ -221,8 +229,7 @@ def cmd_cost(args) -> int:
     from . import cost
     outdir.clear(args.out, outdir.COST)
     scene = resolve(args.scene)
-    out = Path(args.out) if args.out else Path("reports") / "cost" / scene.name
-    outdir.clear(out, outdir.COST)
+    out = _out(args, Path("reports") / "cost" / scene.name, outdir.COST)
     with _progress(args, f"cost {scene.name}") as prog:
         prog("solving the reference and the first settings", fraction=0.0)
         st = cost.study(scene, repeats=args.repeats, quick=args.quick, progress=prog,

@@ -119,7 +119,6 @@ def solve_scene(scene: Scene, method: str, *, tolerance: float | None = None,
             element_length=element_length).element_length)
         if scene.ends.kind == "hang_off_angle":
             validity.check_motion(scene, scene.ends.hang_off_height)
-    if scene.ends.kind != "fixed":
         say("bvp: solving the scene's own model for the conversion to fixed ends")
     eq = vfife_equivalent(scene)
     res = vfife.solve(eq.scene, element_length=element_length, progress=progress)

@@ -79,11 +79,11 @@ def bending_checks(mesh, tension: np.ndarray) -> list[str]:
     mt = float(np.min(lb_t))
     mw = float(np.min(lb_w))
     if h > 0.5 * mt:
-        out.append(f"resolution: element length {h:g} m is long compared with the bending length "
-                   f"sqrt(EI/T) = {mt:.3g} m (use <= {0.5 * mt:.2g} m for the moment peaks)")
+        out.append(f"resolution: element length {h:g} m is long compared with the bending "
+                   f"length sqrt(EI/T) = {mt:.3g} m (use <= {0.5 * mt:.2g} m for the moment peaks)")
     if h > 0.25 * mw:
-        out.append(f"resolution: element length {h:g} m is long compared with the bending length "
-                   f"(EI/|w|)^(1/3) = {mw:.3g} m (use <= {0.25 * mw:.2g} m)")
+        out.append(f"resolution: element length {h:g} m is long compared with the bending "
+                   f"length (EI/|w|)^(1/3) = {mw:.3g} m (use <= {0.25 * mw:.2g} m)")
     return out
 
 
