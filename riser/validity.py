@@ -39,6 +39,11 @@ from .scene import Scene
 #: segment's own weight and stiffness
 MIN_ELEMENTS_LINE = 10
 MIN_ELEMENTS_SEGMENT = 2
+#: the most elements a VFIFE line may have: the explicit step shrinks with the element
+#: length (axially ~ l, in bending ~ l^2), so a finer mesh runs for hours or exhausts the
+#: memory (1e-9 m elements on a 900 m chain: 9e11 elements) instead of answering; the
+#: built-in scenes use 1,000-4,000 and the cost study's finest 5,800
+MAX_ELEMENTS_LINE = 100_000
 #: effective compression below this fraction of the largest tension is numerical noise
 COMPRESSION_NOISE = 1e-3
 #: form (b): a solved first-segment length this far (fraction) from the file's is warned
@@ -48,10 +53,16 @@ FIRST_SEGMENT_CHANGE = 0.1
 def check_resolution(scene: Scene, element_length: float, *, source: str | None = None,
                      key: str = "vfife.element_length") -> None:
     """Refuse (SceneError) an element length [m] too coarse for the line and its
-    segments: at least :data:`MIN_ELEMENTS_LINE` elements on the line and
-    :data:`MIN_ELEMENTS_SEGMENT` on every segment."""
+    segments (at least :data:`MIN_ELEMENTS_LINE` elements on the line and
+    :data:`MIN_ELEMENTS_SEGMENT` on every segment) or too fine to run (at most
+    :data:`MAX_ELEMENTS_LINE` on the line)."""
     src = source or scene.source
     total = scene.total_length
+    if element_length < total / MAX_ELEMENTS_LINE:
+        raise SceneError(src, key, f"must be >= {total / MAX_ELEMENTS_LINE:.4g} m (at most "
+                         f"{MAX_ELEMENTS_LINE:,} elements on the {total:g} m line: the "
+                         f"explicit time step shrinks with the element length), got "
+                         f"{element_length:g}")
     if element_length > total / MIN_ELEMENTS_LINE:
         raise SceneError(src, key, f"must be <= {total / MIN_ELEMENTS_LINE:.4g} m (at least "
                          f"{MIN_ELEMENTS_LINE} elements on the {total:g} m line, to carry its "

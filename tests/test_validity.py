@@ -44,6 +44,9 @@ def edited(tmp_path, builtin: str, *pairs, name="edited.toml") -> str:
     # 900 m elements on a 2,000 m SCR put the touchdown at x = 0 before issue 13
     (["solve", "scr-steel", "--method", "vfife", "--element-length", "900"],
      "command line: --element-length", ["at least 10 elements", "<= 200 m"]),
+    # a careless 1e-9 m would ask for 2e12 elements: refused instead of running for ever
+    (["solve", "scr-steel", "--method", "vfife", "--element-length", "1e-9"],
+     "command line: --element-length", ["must be >= 0.02 m", "at most 100,000 elements"]),
     (["compare", "wang2014-baseline", "--element-length", "300"],
      "command line: --element-length", ["at least 10 elements"]),
 ])
