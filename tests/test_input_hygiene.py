@@ -290,3 +290,16 @@ def test_the_touchdown_search_says_which_way_the_line_is_wrong():
         no_touchdown_reason(w, np.array([10.0, 1810.0]), 1500.0, 1000.0)
     assert "no touchdown was found within segments[0] (10 m)" in \
         no_touchdown_reason(w, np.array([10.0, 1990.0]), 1500.0, 1000.0)
+
+
+def test_a_closed_pipe_is_not_an_error(tmp_path):
+    # `riser-verify scenes | head -1`: the reader leaves early; no "unexpected" error line.
+    # `true` reads nothing and has exited long before Python has started, so the write
+    # always meets a closed pipe (with `head` it was a race: 1 failure in 5 without the fix)
+    import subprocess
+    import sys
+    p = subprocess.run(f"{sys.executable} -m verification.cli scenes | true", shell=True,
+                       capture_output=True, text=True, cwd=tmp_path,
+                       env={**os.environ, "PYTHONPATH": str(Path(__file__).parents[1])},
+                       executable="/bin/bash")
+    assert p.stderr == "", p.stderr

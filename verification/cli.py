@@ -321,6 +321,9 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         _err("interrupted")
         return 130
+    except BrokenPipeError:        # the reader went away (`riser-verify scenes | head`)
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())   # no flush error
+        return 141                 # 128 + SIGPIPE, as a shell pipeline reports it
     except Exception as exc:       # noqa: BLE001 - one line, never a traceback
         _err(f"unexpected {type(exc).__name__}: {exc} (please report it with the command)")
         return 1
