@@ -54,18 +54,19 @@ _MEANING = {
 @dataclass(frozen=True)
 class DynamicsResult:
     """Arrays of a dynamic run (VFIFE), for programmatic use; the files
-    ``timeseries.csv``, ``envelope.csv`` and ``states.npz`` hold the same.
+    ``timeseries.csv``, ``envelope.csv`` and ``states.npz`` hold the same (columns and
+    units: :mod:`vfife.dynamic_outputs` and the README's "Dynamics").
 
-    timeseries : column -> (k,) array, sampled every output interval (``time`` [s],
-        ``hang_off_tension`` [N], ``max_moment`` [N m] and its ``max_moment_s`` [m],
-        ``hang_off_x``/``_y``/``_z`` [m]).
-    envelope : column -> (n,) array along the line (``s`` [m], extremes over the run).
-    states : ``t`` (k,), ``s`` (n,), ``x`` (k, n, 3) [m], ``v`` (k, n, 3) [m/s].
+    timeseries : column -> (k,) array, sampled every output interval from t = 0.
+    envelope : column -> (n,) array along the line (``s`` [m]; extremes over the
+        statistics window).
+    states : ``t`` (k,), ``s`` (n,), ``x`` (k, n, 3) [m], ``v`` (k, n, 3) [m/s]; None
+        unless ``[dynamics] save_states``.
     """
 
     timeseries: dict
     envelope: dict
-    states: dict
+    states: dict | None
 
 
 @dataclass

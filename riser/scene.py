@@ -170,25 +170,55 @@ class Ends:
 
 @dataclass(frozen=True)
 class TopMotion:
-    """Prescribed hang-off motion along ``axis``: harmonic (amplitude [m], period [s]) or a
-    time series (times [s], displacements [m], linearly interpolated)."""
+    """Prescribed hang-off motion along ``axis`` ('x', 'y' or 'z'): harmonic (amplitude
+    [m], period [s]: d = A sin(2 pi t / T)) or a time series (times [s], displacements
+    [m], linearly interpolated). ``ramp_time`` [s]: the motion is multiplied by the
+    half-cosine ramp 0.5 (1 - cos(pi t / t_r)) up to t_r; None (the default) means one
+    period of a harmonic motion and no ramp for a time series (which starts where it says);
+    0 turns the ramp off (an impulsive start)."""
 
     axis: str
     amplitude: float = 0.0
     period: float = 0.0
     times: tuple[float, ...] | None = None
     displacements: tuple[float, ...] | None = None
-    ramp_time: float = 0.0
+    ramp_time: float | None = None
+
+    @property
+    def ramp(self) -> float:
+        """The ramp duration applied [s] (see the class docstring)."""
+        if self.ramp_time is not None:
+            return float(self.ramp_time)
+        return float(self.period) if self.times is None else 0.0
 
 
 @dataclass(frozen=True)
 class Dynamics:
-    """Dynamic run from the static state: duration and output interval [s]."""
+    """Dynamic run from the static state: duration and output interval [s].
+
+    damping : mass-proportional damping coefficient [1/s] (structural; the hydrodynamic
+        drag is always on in water, see vfife/dynamics.py).
+    statistics_start : [s] envelopes and statistics are taken from this time on; None
+        means the end of the top motion's ramp (0 without a ramp, or when the ramp is not
+        shorter than the run).
+    save_states : write every node's position and velocity at the output times
+        (``states.npz``).
+    """
 
     duration: float
     output_interval: float
     top_motion: TopMotion | None = None
-    damping: float = 0.0          # mass-proportional damping coefficient [1/s]
+    damping: float = 0.0
+    statistics_start: float | None = None
+    save_states: bool = False
+
+    @property
+    def statistics_from(self) -> float:
+        """The time [s] from which envelopes and statistics are taken."""
+        if self.statistics_start is not None:
+            return float(self.statistics_start)
+        ramp = self.top_motion.ramp if self.top_motion is not None else 0.0
+        return ramp if ramp < self.duration else 0.0
 
 
 @dataclass(frozen=True)

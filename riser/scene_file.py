@@ -295,11 +295,13 @@ def _read_dynamics(t: Table) -> Dynamics:
     duration = t.number("duration", gt=0.0, le=1.0e6, unit="s")
     interval = t.number("output_interval", min(1.0, duration), gt=0.0, le=duration, unit="s")
     damping = t.number("damping", 0.0, ge=0.0, le=100.0, unit="1/s")
+    stats = t.number("statistics_start", None, ge=0.0, lt=duration, unit="s")
+    save = t.boolean("save_states", False)
     motion = None
     tm = t.table("top_motion")
     if tm is not None:
         axis = tm.string("axis", choices=("x", "y", "z"))
-        ramp = tm.number("ramp_time", 0.0, ge=0.0, le=duration, unit="s")
+        ramp = tm.number("ramp_time", None, ge=0.0, le=duration, unit="s")
         if tm.has("times") or tm.has("displacements"):
             times = tm.numbers("times", min_length=2, ge=0.0, le=1.0e6, unit="s")
             disp = tm.numbers("displacements", length=len(times), ge=-1000.0, le=1000.0, unit="m")
@@ -312,9 +314,14 @@ def _read_dynamics(t: Table) -> Dynamics:
                                amplitude=tm.number("amplitude", ge=0.0, le=1000.0, unit="m"),
                                period=tm.number("period", gt=0.0, le=1.0e4, unit="s"),
                                ramp_time=ramp)
+            if ramp is None and motion.period >= duration:
+                raise t.error("duration", f"must be > {motion.period:g} s, the default ramp "
+                              "(one period of top_motion), got "
+                              f"{duration:g}; or set top_motion.ramp_time (0: no ramp)")
         tm.finish()
     t.finish()
-    return Dynamics(duration=duration, output_interval=interval, top_motion=motion, damping=damping)
+    return Dynamics(duration=duration, output_interval=interval, top_motion=motion,
+                    damping=damping, statistics_start=stats, save_states=save)
 
 
 MODEL_CHOICES = {"axial": ("extensible", "inextensible"), "seabed": ("elastic", "rigid")}

@@ -75,26 +75,6 @@ def check_resolution(scene: Scene, element_length: float, *, source: str | None 
                          f"{shortest:g} m long), got {element_length:g}")
 
 
-def check_motion(scene: Scene, hang_off_height: float) -> None:
-    """Refuse (SceneError) a prescribed hang-off motion that lifts the hang-off, at height
-    ``hang_off_height`` [m] in the static state, out of the water (the model is fully
-    submerged)."""
-    dyn = scene.dynamics
-    if dyn is None or dyn.top_motion is None or dyn.top_motion.axis != "y":
-        return
-    if scene.water_depth is None:
-        return
-    tm = dyn.top_motion
-    up = tm.amplitude if tm.times is None else max(tm.displacements)
-    key = "dynamics.top_motion." + ("amplitude" if tm.times is None else "displacements")
-    if hang_off_height + up > scene.water_depth:
-        raise SceneError(scene.source, key, f"lifts the hang-off from y = {hang_off_height:.6g} "
-                         f"m to {hang_off_height + up:.6g} m, above the sea surface "
-                         f"(water_depth {scene.water_depth:g} m; the model is fully "
-                         f"submerged): must be <= {scene.water_depth - hang_off_height:.4g} m, "
-                         f"got {up:g}")
-
-
 def nonfinite(profile: Profile) -> str | None:
     """The reason a profile cannot be a result (NaN/inf in it), else None."""
     for name in ("s", "x", "y", "z", "tension", "moment"):
@@ -117,11 +97,12 @@ def _where(s: float) -> str:
 
 def line_warnings(scene: Scene, s: np.ndarray, y_min: np.ndarray, y_max: np.ndarray,
                   t_min: np.ndarray, t_max: np.ndarray, lengths=None,
-                  when: str = "") -> list[str]:
+                  when: str = "", surface: bool = False) -> list[str]:
     """Named warnings for a line whose stations at arc lengths ``s`` [m] reach heights
     ``y_min``..``y_max`` [m] and effective tensions ``t_min``..``t_max`` [N] (one state:
     equal pairs; a dynamic run: the extremes over time). ``when``: e.g. ' during the
-    dynamics'."""
+    dynamics'. ``surface``: the run modelled the sea surface (the VFIFE dynamics), so
+    leaving the water is a statement, not a model violation."""
     out = []
     seg = _segment_index(scene, s, lengths)
     lts = [scene.line_types[g.line_type] for g in scene.segments]
@@ -139,9 +120,13 @@ def line_warnings(scene: Scene, s: np.ndarray, y_min: np.ndarray, y_max: np.ndar
     if scene.water_depth is not None:
         j = int(np.argmax(y_max))
         if y_max[j] > scene.water_depth * (1.0 + 1e-9):
+            wet = np.sum(y_max > scene.water_depth * (1.0 + 1e-9))
+            what = (f"{wet} node(s) leave the water (modelled: in air a node carries its "
+                    "weight in air, with no buoyancy, drag or added mass)" if surface else
+                    "the model is fully submerged")
             out.append(f"above_surface: the line reaches y = {y_max[j]:.6g} m {_where(s[j])}"
                        f"{when}, above the sea surface (water_depth {scene.water_depth:g} m); "
-                       "the model is fully submerged")
+                       + what)
     j = int(np.argmin(y_min))
     depth = -float(y_min[j])
     tol = 1e-6 * max(scene.total_length, 1.0)

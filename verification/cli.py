@@ -105,9 +105,19 @@ def cmd_solve(args) -> int:
           f"y = {sm['hang_off_height']:.2f} m")
     if sm.get("tdp_x") is not None:
         print(f"  touchdown x = {sm['tdp_x']:.2f} m, tension {sm['tdp_tension'] / 1e3:.2f} kN")
-    print(f"  max tension {sm['max_tension'] / 1e3:.2f} kN, max moment "
+    if res.dynamics is None:
+        print(f"  max tension {sm['max_tension'] / 1e3:.2f} kN, max moment "
+              f"{sm['max_moment'] / 1e3:.3f} kN m at s = {sm['max_moment_s']:.1f} m")
+        print(f"  wrote {out}/profile.csv and summary.json")
+        return _warn(res, args.strict)
+    from .dynamics_report import summary_lines, write_plots
+    write_plots(res.dynamics, out, f"{scene.name} [{args.method}]", sm["statistics_start"])
+    print(f"  static: max tension {sm['max_tension'] / 1e3:.2f} kN, max moment "
           f"{sm['max_moment'] / 1e3:.3f} kN m at s = {sm['max_moment_s']:.1f} m")
-    print(f"  wrote {out}/profile.csv and summary.json")
+    for line in summary_lines(sm):
+        print(line)
+    files = [f for f in outdir.SOLVE if (out / f).exists()]
+    print(f"  wrote {out}/: {', '.join(files)}")
     return _warn(res, args.strict)
 
 

@@ -18,8 +18,10 @@ from pathlib import Path
 
 from riser.errors import SceneError
 
-#: ``solve``: one result (SolveResult.write; the last three: a VFIFE dynamic run)
-SOLVE = ("profile.csv", "summary.json", "timeseries.csv", "envelope.csv", "states.npz")
+#: ``solve``: one result (SolveResult.write; the rest: a VFIFE dynamic run, its plots, and
+#: states.npz with ``[dynamics] save_states``)
+SOLVE = ("profile.csv", "summary.json", "timeseries.csv", "envelope.csv", "states.npz",
+         "timeseries.png", "envelope.png")
 #: ``compare`` (and each scene folder of ``reproduce compare``): the protocol's files and
 #: one solve folder per method
 COMPARE = ("agreement.csv", "report.md", "configurations.png", "forces.png", "differences.png",

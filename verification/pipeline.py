@@ -26,6 +26,7 @@ from riser.profile import Profile
 from riser.result import METHODS, SolveResult
 from riser.scene import Scene
 from riser.transform import fixed_ends_scene
+from vfife.dynamic_outputs import ARC_LENGTH_KEYS
 from vfife.ends import require_vfife_model
 
 @dataclass(frozen=True)
@@ -84,12 +85,15 @@ def shifted(profile: Profile | None, s_shift: float) -> Profile | None:
 
 def shifted_dynamics(dyn, s_shift: float):
     """``dyn`` (a :class:`~riser.result.DynamicsResult`) with ``s_shift`` [m] subtracted
-    from its arc lengths (envelope and states ``s``, the time series' ``max_moment_s``).
-    The dictionaries are updated in place: the result's file writers hold the same ones."""
+    from its arc lengths (envelope and states ``s``, the time series' ``touchdown_s``,
+    ``min_tension_s`` and ``max_moment_s``). The dictionaries are updated in place: the
+    result's file writers hold the same ones."""
     if dyn is not None and s_shift:
-        dyn.timeseries["max_moment_s"] = dyn.timeseries["max_moment_s"] - s_shift
+        for key in ("touchdown_s", "min_tension_s", "max_moment_s"):
+            dyn.timeseries[key] = dyn.timeseries[key] - s_shift
         dyn.envelope["s"] = dyn.envelope["s"] - s_shift
-        dyn.states["s"] = dyn.states["s"] - s_shift
+        if dyn.states is not None:
+            dyn.states["s"] = dyn.states["s"] - s_shift
     return dyn
 
 
@@ -117,8 +121,6 @@ def solve_scene(scene: Scene, method: str, *, tolerance: float | None = None,
         # refuse what the VFIFE would refuse before the conversion's BVP solve
         validity.check_resolution(scene, scene.vfife.override(
             element_length=element_length).element_length)
-        if scene.ends.kind == "hang_off_angle":
-            validity.check_motion(scene, scene.ends.hang_off_height)
         say("bvp: solving the scene's own model for the conversion to fixed ends")
     eq = vfife_equivalent(scene)
     res = vfife.solve(eq.scene, element_length=element_length, progress=progress)
@@ -127,4 +129,7 @@ def solve_scene(scene: Scene, method: str, *, tolerance: float | None = None,
         res.scene = scene.name
         res.profile = shifted(res.profile, eq.s_shift)
         res.dynamics = shifted_dynamics(res.dynamics, eq.s_shift)
+        for key in ARC_LENGTH_KEYS:
+            if res.info.get(key) is not None:
+                res.info[key] -= eq.s_shift
     return res

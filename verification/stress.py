@@ -113,15 +113,15 @@ def _dynamic_checks(dyn) -> list[str]:
     T = np.asarray(dyn.timeseries.get("hang_off_tension", []), dtype=float)
     if T.size == 0 or not np.all(np.isfinite(T)):
         out.append("non-finite hang-off tension series")
-    st = dyn.states
-    if st is not None and len(st.get("t", [])) >= 10:
-        v2 = np.mean(np.sum(np.asarray(st["v"]) ** 2, axis=2), axis=1)   # (k,)
-        k = len(v2)
-        mid, last = v2[k // 5: 4 * k // 5], v2[4 * k // 5:]
-        if not np.all(np.isfinite(v2)):
-            out.append("non-finite velocities")
+    ke = np.asarray(dyn.timeseries.get("kinetic_energy", []), dtype=float)
+    if len(ke) >= 10:
+        k = len(ke)
+        mid, last = ke[k // 5: 4 * k // 5], ke[4 * k // 5:]
+        if not np.all(np.isfinite(ke)):
+            out.append("non-finite kinetic energy")
         elif mid.size and last.max() > 4.0 * max(mid.max(), 1e-12):
-            out.append(f"kinetic energy grows: last fifth {last.max():.3g} vs {mid.max():.3g} (m/s)^2")
+            out.append(f"kinetic energy grows: last fifth {last.max():.3g} J vs "
+                       f"{mid.max():.3g} J")
     return out
 
 

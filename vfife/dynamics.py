@@ -5,15 +5,23 @@ pipe + contents, added mass normal to the axis (if the line types have C_a > 0) 
 rotational inertia scaled by ``[vfife] rotational_inertia_scale_dynamics`` (default 4:
 the critical step then follows the axial wave, l/c, instead of l/(sqrt(3) c), 1.7x
 faster; the rotary inertia of a pipe changes bending waves of length lambda by
-~(2 pi r_g / lambda)^2 with r_g ~ D/2.8, i.e. < 1.5 % even for 10 m waves with the x4). Damping: ``[dynamics] damping`` [1/s] mass-proportional (default 0) plus the
-hydrodynamic drag when a current is given (Morison on the relative velocity, so also
-with a zero-speed current: the effect is then pure hydrodynamic damping; without a
-[environment.current] table the drag kernel is not run at all).
+~(2 pi r_g / lambda)^2 with r_g ~ D/2.8, i.e. < 1.5 % even for 10 m waves with the x4).
 
-Outputs at every ``output_interval``: time, hang-off tension and position, peak moment
-and its arc length; envelopes of tension and moment along s sampled every
-``envelope_interval`` (the output interval divided by the smallest whole number that makes it <= period / 40); node positions and velocities
-at the output times go to ``states.npz`` (arrays t (k,), s (n,), x (k, n, 3), v (k, n, 3)).
+Hydrodynamics: a line moving through water always feels Morison drag on its velocity
+relative to the water (the current's, zero in still water), normal and tangential, when
+its line types have drag coefficients: the drag kernel runs in every dynamic run (effect
+``drag``, or ``current_drag`` with a current), unlike the statics, which runs it only with
+a current. Sea surface: with ``water_depth`` given, a node above y = water_depth is in
+air: its weight in air (m g, no buoyancy), no drag and no added mass (effect
+``sea_surface``; the summary warns when a node leaves the water). Damping: ``[dynamics]
+damping`` [1/s], mass-proportional (structural; default 0), on top of the drag.
+
+Top motion: ``top0 + d(t) axis`` with d(t) from :func:`top_displacement`, multiplied by
+a half-cosine ramp over ``ramp_time`` (default one period of a harmonic motion: an
+impulsive start rings the line axially for the whole run).
+
+Outputs: see :mod:`vfife.dynamic_outputs` (time series every ``output_interval``,
+envelopes and statistics from ``statistics_start``, states on request).
 """
 
 from __future__ import annotations
@@ -25,6 +33,7 @@ import numpy as np
 
 from riser.callbacks import with_fraction
 
+from .dynamic_outputs import Recorder
 from .model import Model, max_speed_hint
 from .timestep import choose_step, critical_steps
 
@@ -41,9 +50,9 @@ def top_displacement(scene, t: np.ndarray) -> np.ndarray:
         d = np.interp(t, tm.times, tm.displacements)
     else:
         d = tm.amplitude * np.sin(2.0 * math.pi * t / tm.period)
-    if tm.ramp_time > 0.0:
-        r = np.where(t < tm.ramp_time, 0.5 * (1.0 - np.cos(math.pi * np.minimum(t, tm.ramp_time)
-                                                            / tm.ramp_time)), 1.0)
+    ramp = tm.ramp
+    if ramp > 0.0:
+        r = np.where(t < ramp, 0.5 * (1.0 - np.cos(math.pi * np.minimum(t, ramp) / ramp)), 1.0)
         d = d * r
     return d
 
@@ -79,9 +88,11 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
     """Integrate the scene's [dynamics] from the static state ``static``.
 
     Returns (model at the end, info) where info holds 'timeseries' (dict of arrays),
-    'envelope' (dict of arrays along s), 'states' (dict for npz), 'time_step', 'steps',
-    'status' ('ok' | 'blow-up'), 'message', 'wall_s'. ``progress``: optional callable,
-    called ``PROGRESS_REPORTS`` times over the run as ``progress(message, fraction=t /
+    'envelope' (dict of arrays along s), 'states' (dict for npz, None unless
+    ``save_states``), 'statistics' (the window's extremes, see
+    :meth:`Recorder.statistics`), 'time_step', 'steps', 'status' ('ok' | 'blow-up'),
+    'message', 'wall_s', 'effects'. ``progress``: optional callable, called
+    ``PROGRESS_REPORTS`` times over the run as ``progress(message, fraction=t /
     duration)`` (the last with 1.0), or ``progress(message)`` if it takes one argument.
     """
     report = with_fraction(progress)
@@ -90,7 +101,8 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
     mesh = static.mesh
     added = any(scene.line_types[s.line_type].added_mass > 0.0 for s in scene.segments)
     rot_scale = vf.rotational_inertia_scale_dynamics
-    model = Model(scene, mesh, rot_scale=rot_scale, added_mass=added, planar=planar)
+    model = Model(scene, mesh, rot_scale=rot_scale, added_mass=added, planar=planar,
+                  drag=True, surface=True)
     model.X[:] = static.X
     model.D[:] = static.D
     kseabed = scene.seabed.stiffness if scene.seabed is not None else 0.0
@@ -114,36 +126,11 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
     per_out = max(1, int(round(out_dt / env_dt)))
     top0 = static.X[:, -1].copy()
     axis = _axis(scene)
-    s = mesh.s
-    ts: dict[str, list] = {k: [] for k in ("time", "hang_off_tension", "max_moment",
-                                           "max_moment_s", "hang_off_x", "hang_off_y",
-                                           "hang_off_z")}
-    states_t, states_x, states_v = [], [], []
-    env = {"tension_min": np.full(mesh.n, np.inf), "tension_max": np.full(mesh.n, -np.inf),
-           "moment_min": np.full(mesh.n, np.inf), "moment_max": np.full(mesh.n, -np.inf)}
-
-    def sample(t: float, record: bool) -> None:
-        r = model.nodal_results()
-        T, M = r["tension"], r["moment"]
-        np.minimum(env["tension_min"], T, out=env["tension_min"])
-        np.maximum(env["tension_max"], T, out=env["tension_max"])
-        np.minimum(env["moment_min"], M, out=env["moment_min"])
-        np.maximum(env["moment_max"], M, out=env["moment_max"])
-        if record:
-            i = int(np.argmax(M))
-            ts["time"].append(t)
-            ts["hang_off_tension"].append(float(T[-1]))
-            ts["max_moment"].append(float(M[i]))
-            ts["max_moment_s"].append(float(s[i]))
-            ts["hang_off_x"].append(float(model.X[0, -1]))
-            ts["hang_off_y"].append(float(model.X[1, -1]))
-            ts["hang_off_z"].append(float(model.X[2, -1]))
-            states_t.append(t)
-            states_x.append(model.positions())
-            states_v.append(model.V.T.copy())
+    start = dyn.statistics_from
+    rec = Recorder(mesh.s, start, dyn.save_states, scene.seabed is not None)
 
     t0 = time.perf_counter()
-    sample(0.0, True)
+    rec.sample(0.0, model, 0.0, True)
     status, message = "ok", "dynamics completed"
     e0 = None
     for j in range(n_env):
@@ -163,24 +150,24 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
             e0 = max(ke, 1.0)
         elif ke > 1e6 * e0 and ke > 1e3 * float(np.sum(model.mass)):
             status = "blow-up"
-            message = (f"dynamics diverged (blow-up, energy growth) at t = {t:.4g} s (kinetic energy {ke:.3g} J); likely "
-                       "cause: " + blow_up_cause({"critical_steps": steps,
-                                                  "time_step": dt}))
+            message = (f"dynamics diverged (blow-up, energy growth) at t = {t:.4g} s (kinetic "
+                       f"energy {ke:.3g} J); likely cause: "
+                       + blow_up_cause({"critical_steps": steps, "time_step": dt}))
             break
-        sample(t, (j + 1) % per_out == 0)
+        rec.sample(t, model, ke, (j + 1) % per_out == 0)
         if report is not None and ((j + 1) % max(1, n_env // PROGRESS_REPORTS) == 0
                                    or j + 1 == n_env):
             report(f"dynamics t = {t:.1f} / {dyn.duration:g} s", fraction=(j + 1) / n_env)
     wall = time.perf_counter() - t0
     info = {
-        "timeseries": {k: np.asarray(v) for k, v in ts.items()},
-        "envelope": {"s": s.copy(), **env},
-        "states": {"t": np.asarray(states_t), "s": s.copy(), "x": np.asarray(states_x),
-                   "v": np.asarray(states_v)},
+        "timeseries": rec.timeseries(), "envelope": rec.envelope(),
+        "states": rec.states_arrays(),
+        "statistics": rec.statistics(start, dyn.duration),
         "time_step": dt, "step_limit": limit, "critical_steps": steps,
         "steps": model.steps, "status": status, "message": message, "wall_s": wall,
         "simulated_s": model.steps * dt,
         "realtime_factor": model.steps * dt / wall if wall > 0 else float("inf"),
         "effects": model.effects + (["top_motion"] if tm is not None else []),
+        "ramp_time": tm.ramp if tm is not None else 0.0,
     }
     return model, info

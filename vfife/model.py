@@ -32,10 +32,15 @@ class Model:
         that does not change the equilibrium; dynamics: as the scene says, default 1).
     added_mass : include the added mass normal to the axis (dynamics only).
     planar : step with the planar kernels (the scene has nothing out of plane).
+    drag : run the Morison drag kernel. None (statics): only with a current of non-zero
+        speed; the dynamics passes True whenever the line types have drag coefficients (a
+        line moving through still water feels drag on its own velocity).
+    surface : model the sea surface at ``water_depth`` (dynamics; needs a water depth):
+        nodes above it carry their weight in air, with no buoyancy, drag or added mass.
     """
 
     def __init__(self, scene: Scene, mesh: Mesh, *, rot_scale: float, added_mass: bool,
-                 planar: bool):
+                 planar: bool, drag: bool | None = None, surface: bool = False):
         self.scene = scene
         self.mesh = mesh
         self.planar = planar
@@ -59,7 +64,9 @@ class Model:
         self.cdn = mesh.lump(mesh.cdn_pl)
         self.cdt = mesh.lump(mesh.cdt_pl)
         cur = scene.current
-        self.use_drag = bool(cur is not None and cur.max_abs_speed > 0.0)
+        self.has_current = bool(cur is not None and cur.max_abs_speed > 0.0)
+        self.use_drag = self.has_current if drag is None else bool(
+            drag and (np.any(self.cdn > 0.0) or np.any(self.cdt > 0.0)))
         if cur is not None:
             self.heights = np.asarray(cur.heights, float)
             self.speeds = np.asarray(cur.speeds, float)
@@ -86,6 +93,10 @@ class Model:
         self.seabed_zeta = zeta
         self.cseabed = 2.0 * zeta * np.sqrt(self.kseabed * self.trib * (self.mass + self.madd))
         self.vfric = 0.01          # [m/s] Coulomb friction regularisation speed
+        self.use_surface = bool(surface and scene.water_depth is not None)
+        self.ysurf = float(scene.water_depth) if self.use_surface else math.inf
+        self.wair = scene.gravity * self.mass       # weight in air [N] (pipe + contents)
+        self.iair = 1.0 / self.mass
         k = 2 if planar else 3
         self.F = np.zeros((k, ne))
         self.MA = np.zeros((k - 1 if planar else 3, ne))
@@ -133,7 +144,9 @@ class Model:
             if self.mu > 0.0:
                 out.append("seabed_friction")
         if self.use_drag:
-            out.append("current_drag")
+            out.append("current_drag" if self.has_current else "drag")
+        if self.use_surface:
+            out.append("sea_surface")
         if np.any(self.madd > 0.0):
             out.append("added_mass")
         return out
@@ -171,7 +184,8 @@ class Model:
                           self.speeds, self.slopes,
                           self.cdir[:2].copy() if self.planar else self.cdir, self.use_drag,
                           self.cseabed, self.mu, self.vfric,
-                          self.eta, self.Q, self.use_dashpot, dt, c, top0, axis, top_disp,
+                          self.eta, self.Q, self.use_dashpot, self.wair, self.iair,
+                          self.ysurf, self.use_surface, dt, c, top0, axis, top_disp,
                           tol_f, tol_m, vmax)
         self.steps += int(out[0])
         return out

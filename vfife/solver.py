@@ -14,6 +14,7 @@ from riser.result import DynamicsResult, SolveResult, Status
 from riser.scene import Scene
 from riser.scene_file import scene_from_dict
 
+from .dynamic_outputs import touchdown_s
 from .dynamics import run_dynamics
 from .ends import require_fixed_ends
 from .mesh import build_mesh
@@ -87,22 +88,6 @@ def bending_checks(mesh, tension: np.ndarray) -> list[str]:
     return out
 
 
-def _tdp_s(s: np.ndarray, y: np.ndarray, scene: Scene) -> float | None:
-    """Arc length of the touchdown point: last node from the bottom in contact (y <= 0),
-    refined by linear interpolation of the height to the crossing of y = 0."""
-    if scene.seabed is None:
-        return None
-    contact = y <= 0.0
-    if not contact[0]:
-        return None
-    i = int(np.argmin(contact)) - 1 if not np.all(contact) else len(s) - 1
-    if i < 0:
-        return None
-    if i + 1 < len(s) and y[i + 1] > y[i]:
-        return float(s[i] + (0.0 - y[i]) / (y[i + 1] - y[i]) * (s[i + 1] - s[i]))
-    return float(s[i])
-
-
 def make_profile(model: Model, scene: Scene) -> Profile:
     """Profile at the nodes of ``model`` (see :meth:`Model.nodal_results`)."""
     r = model.nodal_results()
@@ -113,7 +98,8 @@ def make_profile(model: Model, scene: Scene) -> Profile:
     theta = np.arctan2(D[:, 1], np.copysign(np.hypot(D[:, 0], D[:, 2]), D[:, 0]))
     return Profile(s=model.mesh.s.copy(), x=X[:, 0], y=X[:, 1], z=X[:, 2], theta=theta,
                    tension=r["tension"], moment=r["moment"], shear=r["shear"],
-                   curvature=r["curvature"], tdp_s=_tdp_s(model.mesh.s, X[:, 1], scene))
+                   curvature=r["curvature"],
+                   tdp_s=touchdown_s(model.mesh.s, X[:, 1], scene.seabed is not None))
 
 
 def _csv_writer(columns: dict):
@@ -124,7 +110,7 @@ def _csv_writer(columns: dict):
             w = csv.writer(fh)
             w.writerow(names)
             for row in zip(*(columns[k] for k in names)):
-                w.writerow([f"{v:.10g}" for v in row])
+                w.writerow([f"{v:.10g}" if np.isfinite(v) else "" for v in row])
     return write
 
 
@@ -153,7 +139,6 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
     vf = scene.vfife.override(element_length=element_length, static_tolerance=tolerance)
     h, tol = vf.element_length, vf.static_tolerance
     validity.check_resolution(scene, h)
-    validity.check_motion(scene, scene.ends.hang_off[1])
     planar = bool(scene.is_planar)
     if vf.clamped_ends and not planar:
         # the elements carry no twist (no GJ): with moment-free ends and no distributed
@@ -218,20 +203,18 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
     info.update({"dynamic_time_step": dinfo["time_step"], "dynamic_steps": dinfo["steps"],
                  "dynamic_step_limit": dinfo["step_limit"], "dynamic_wall_s": dinfo["wall_s"],
                  "realtime_factor": dinfo["realtime_factor"],
-                 "states_file": "states.npz (t (k,), s (n,), x (k, n, 3), v (k, n, 3))"})
+                 "ramp_time": dinfo["ramp_time"]})
     if dinfo["status"] != "ok":
         return result(Status.DIVERGED, dinfo["message"], solver_state=model)
     message += f"; {dinfo['message']} ({dinfo['steps']} steps of {dinfo['time_step']:.3g} s)"
-    ts, env = dinfo["timeseries"], dinfo["envelope"]
-    y = dinfo["states"]["x"][:, :, 1]
-    warnings.extend(validity.line_warnings(scene, env["s"], y.min(axis=0), y.max(axis=0),
+    ts, env, states = dinfo["timeseries"], dinfo["envelope"], dinfo["states"]
+    warnings.extend(validity.line_warnings(scene, env["s"], env["y_min"], env["y_max"],
                                            env["tension_min"], env["tension_max"],
-                                           when=" during the dynamics"))
-    info["dynamic_max_hang_off_tension"] = float(np.max(ts["hang_off_tension"]))
-    info["dynamic_min_hang_off_tension"] = float(np.min(ts["hang_off_tension"]))
-    info["dynamic_max_moment"] = float(np.max(env["moment_max"]))
+                                           when=" during the dynamics", surface=True))
+    info.update(dinfo["statistics"])
+    files = {"timeseries.csv": _csv_writer(ts), "envelope.csv": _csv_writer(env)}
+    if states is not None:
+        files["states.npz"] = _npz_writer(states)
+        info["states_file"] = "states.npz (t (k,), s (n,), x (k, n, 3), v (k, n, 3))"
     return result(Status.CONVERGED, message, profile, solver_state=model,
-                  dynamics=DynamicsResult(ts, env, dinfo["states"]),
-                  extra_files={"timeseries.csv": _csv_writer(ts),
-                               "envelope.csv": _csv_writer(env),
-                               "states.npz": _npz_writer(dinfo["states"])})
+                  dynamics=DynamicsResult(ts, env, states), extra_files=files)

@@ -1,0 +1,150 @@
+"""What a dynamic run records: time series, envelopes along s and statistics over a window.
+
+Sampling: :class:`Recorder` is called every envelope interval (at most period/40 of a
+harmonic top motion, an exact divisor of the output interval; see vfife/dynamics.py).
+Every call updates the statistics and the envelopes when its time is at or after the
+window start (``[dynamics] statistics_start``, default the end of the ramp); the time
+series and the states take the calls at the output times, from t = 0.
+
+Time series (one row per output time; SI units, s from the bottom end):
+    time [s]; hang_off_x, hang_off_y, hang_off_z [m] (hang-off position);
+    hang_off_tension [N] (effective tension at the hang-off node);
+    touchdown_s [m], touchdown_tension [N] (the last node from the bottom in contact,
+    refined to y = 0; empty when the line is off the seabed or there is none);
+    min_tension [N], min_tension_s [m] (the lowest effective tension along the whole
+    line, negative = compression, and where); max_moment [N m], max_moment_s [m];
+    kinetic_energy [J] (translations and rotations).
+Envelopes (one row per node): s [m], tension_min, tension_max [N], moment_max [N m],
+curvature_max [1/m], y_min, y_max [m] (height extremes: seabed and surface clearance).
+States (``[dynamics] save_states``): t (k,), s (n,), x (k, n, 3) [m], v (k, n, 3) [m/s].
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+TIMESERIES = ("time", "hang_off_x", "hang_off_y", "hang_off_z", "hang_off_tension",
+              "touchdown_s", "touchdown_tension", "min_tension", "min_tension_s",
+              "max_moment", "max_moment_s", "kinetic_energy")
+#: summary keys (:meth:`Recorder.statistics`) that hold an arc length [m]
+ARC_LENGTH_KEYS = ("dynamic_min_touchdown_s", "dynamic_max_touchdown_s",
+                   "dynamic_min_tension_s", "dynamic_max_moment_s", "dynamic_max_tension_s")
+ENVELOPE = ("s", "tension_min", "tension_max", "moment_max", "curvature_max", "y_min",
+            "y_max")
+
+
+def touchdown_s(s: np.ndarray, y: np.ndarray, has_seabed: bool) -> float | None:
+    """Arc length [m] of the touchdown point: the last node from the bottom in contact
+    (y <= 0), refined by linear interpolation of the height to the crossing of y = 0;
+    None without a seabed or when the bottom node is off it."""
+    if not has_seabed:
+        return None
+    contact = y <= 0.0
+    if not contact[0]:
+        return None
+    i = int(np.argmin(contact)) - 1 if not np.all(contact) else len(s) - 1
+    if i < 0:
+        return None
+    if i + 1 < len(s) and y[i + 1] > y[i]:
+        return float(s[i] + (0.0 - y[i]) / (y[i + 1] - y[i]) * (s[i + 1] - s[i]))
+    return float(s[i])
+
+
+class Recorder:
+    """Collects the outputs of one dynamic run (see the module docstring).
+
+    s : (n,) node arc lengths [m]; start : the statistics window's start [s];
+    save_states : keep the node positions and velocities at the output times;
+    has_seabed : the scene has a seabed (touchdown outputs).
+    """
+
+    def __init__(self, s: np.ndarray, start: float, save_states: bool, has_seabed: bool):
+        self.s = np.asarray(s, float)
+        self.start = float(start)
+        self.save_states = save_states
+        self.has_seabed = has_seabed
+        n = len(self.s)
+        self.ts = {k: [] for k in TIMESERIES}
+        self.env = {"tension_min": np.full(n, np.inf), "tension_max": np.full(n, -np.inf),
+                    "moment_max": np.full(n, -np.inf), "curvature_max": np.full(n, -np.inf),
+                    "y_min": np.full(n, np.inf), "y_max": np.full(n, -np.inf)}
+        self.states = {"t": [], "x": [], "v": []}
+        self.stats: dict = {}
+        self.samples = 0
+
+    def sample(self, t: float, model, ke: float, record: bool) -> None:
+        """Take the state of ``model`` at time ``t`` [s] (kinetic energy ``ke`` [J]);
+        ``record``: an output time (time series, states)."""
+        r = model.nodal_results()
+        T, M, K = r["tension"], r["moment"], r["curvature"]
+        y = model.X[1]
+        top = model.X[:, -1]
+        td = touchdown_s(self.s, y, self.has_seabed)
+        td_t = float(np.interp(td, self.s, T)) if td is not None else np.nan
+        i_min, i_mom = int(np.argmin(T)), int(np.argmax(M))
+        row = {"time": t, "hang_off_x": top[0], "hang_off_y": top[1], "hang_off_z": top[2],
+               "hang_off_tension": T[-1], "touchdown_s": np.nan if td is None else td,
+               "touchdown_tension": td_t, "min_tension": T[i_min],
+               "min_tension_s": self.s[i_min], "max_moment": M[i_mom],
+               "max_moment_s": self.s[i_mom], "kinetic_energy": ke}
+        if t >= self.start - 1e-9:
+            self._window(row, T, M, K, y)
+        if record:
+            for k in TIMESERIES:
+                self.ts[k].append(float(row[k]))
+            if self.save_states:
+                self.states["t"].append(t)
+                self.states["x"].append(model.positions())
+                self.states["v"].append(model.V.T.copy())
+
+    def _window(self, row: dict, T, M, K, y) -> None:
+        e = self.env
+        np.minimum(e["tension_min"], T, out=e["tension_min"])
+        np.maximum(e["tension_max"], T, out=e["tension_max"])
+        np.maximum(e["moment_max"], M, out=e["moment_max"])
+        np.maximum(e["curvature_max"], K, out=e["curvature_max"])
+        np.minimum(e["y_min"], y, out=e["y_min"])
+        np.maximum(e["y_max"], y, out=e["y_max"])
+        st = self.stats
+        self.samples += 1
+        for key, value, pick in (("max_hang_off_tension", row["hang_off_tension"], max),
+                                 ("min_hang_off_tension", row["hang_off_tension"], min),
+                                 ("min_touchdown_s", row["touchdown_s"], min),
+                                 ("max_touchdown_s", row["touchdown_s"], max)):
+            if np.isfinite(value):
+                st[key] = float(value) if key not in st else pick(st[key], float(value))
+        if "min_tension" not in st or row["min_tension"] < st["min_tension"]:
+            st["min_tension"], st["min_tension_s"] = float(row["min_tension"]), float(
+                row["min_tension_s"])
+            st["min_tension_time"] = float(row["time"])
+        if "max_moment" not in st or row["max_moment"] > st["max_moment"]:
+            st["max_moment"], st["max_moment_s"] = float(row["max_moment"]), float(
+                row["max_moment_s"])
+            st["max_moment_time"] = float(row["time"])
+
+    def timeseries(self) -> dict:
+        return {k: np.asarray(v, float) for k, v in self.ts.items()}
+
+    def envelope(self) -> dict:
+        return {"s": self.s.copy(), **{k: v.copy() for k, v in self.env.items()}}
+
+    def states_arrays(self) -> dict | None:
+        if not self.save_states:
+            return None
+        return {"t": np.asarray(self.states["t"]), "s": self.s.copy(),
+                "x": np.asarray(self.states["x"]), "v": np.asarray(self.states["v"])}
+
+    def statistics(self, start: float, end: float) -> dict:
+        """The window's extremes (``dynamic_*`` keys of summary.json; [N], [N m], [m], [s])."""
+        st = dict(self.stats)
+        out = {"statistics_start": start, "statistics_end": end,
+               "statistics_samples": self.samples}
+        if "max_hang_off_tension" in st:
+            st["hang_off_tension_range"] = st["max_hang_off_tension"] - st[
+                "min_hang_off_tension"]
+        if len(self.env["tension_max"]) and np.isfinite(self.env["tension_max"][0]):
+            j = int(np.argmax(self.env["tension_max"]))
+            st["max_tension"], st["max_tension_s"] = float(self.env["tension_max"][j]), float(
+                self.s[j])
+        out.update({f"dynamic_{k}": v for k, v in st.items()})
+        return out
