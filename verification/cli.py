@@ -189,6 +189,25 @@ def cmd_compare(args) -> int:
     return 0 if comp.passed and not warned else 1
 
 
+#: most modes per plane the ``modes`` command computes (the BVP refines each one)
+MAX_MODES = 50
+
+
+def cmd_modes(args) -> int:
+    from . import modes
+    outdir.clear(args.out, modes.FILES)
+    if not 1 <= args.count <= MAX_MODES:
+        raise SceneError("command line", "--count", f"must be between 1 and {MAX_MODES} (modes "
+                         f"per plane), got {args.count}")
+    scene = resolve(args.scene)
+    out = _out(args, Path("out") / scene.name / "modes", modes.FILES)
+    with _progress(args, f"modes {scene.name}") as prog:
+        run = modes.run_modes(scene, args.count, out, progress=prog)
+    for line in modes.summary_lines(run):
+        print(line)
+    return 0 if run.all_meet else 1
+
+
 def cmd_regress(args) -> int:
     from . import regress
     problems = regress.run(update=args.update, names=args.scenes or None)
@@ -289,6 +308,12 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--strict", action="store_true",
                    help="exit 1 when either method's result carries warnings")
     s.set_defaults(func=cmd_compare)
+    s = sub.add_parser("modes", help="natural modes about the static state, both methods")
+    s.add_argument("scene", help="built-in scene name or path to a .toml scene file")
+    s.add_argument("--count", type=int, default=10,
+                   help="modes per plane (in-plane and out-of-plane; default 10)")
+    s.add_argument("--out", help="output directory (default out/SCENE/modes)")
+    s.set_defaults(func=cmd_modes)
     s = sub.add_parser("regress", help="compare every built-in scene with its stored summary")
     s.add_argument("scenes", nargs="*", help="only these built-in scenes")
     s.add_argument("--update", action="store_true", help="rewrite the stored summaries")
@@ -312,7 +337,7 @@ def build_parser() -> argparse.ArgumentParser:
                         "the VFIFE limit) and every relaxation setting; 6-10x the time (4-5 "
                         "min a built-in scene)")
     s.set_defaults(func=cmd_cost)
-    for name in ("solve", "compare", "stress", "cost", "reproduce"):   # also after the command
+    for name in ("solve", "compare", "modes", "stress", "cost", "reproduce"):   # after the command
         sub.choices[name].add_argument("-q", "--quiet", action="store_true",
                                        default=argparse.SUPPRESS, help=QUIET_HELP)
     return p

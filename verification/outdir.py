@@ -28,7 +28,11 @@ COMPARE = ("agreement.csv", "report.md", "configurations.png", "forces.png", "di
            *(f"{sub}/{name}" for sub in ("bvp", "vfife", "bvp_paper_model") for name in SOLVE))
 #: ``cost`` (and each scene folder of ``reproduce cost``)
 COST = ("runs.csv", "values.csv", "report.md", "error_vs_time.png",
-        "error_vs_element_length.png", "time_vs_elements.png")
+        "error_vs_element_length.png", "time_vs_elements.png", "dynamics.csv",
+        "dynamics_error.png")
+#: ``modes`` (and each scene folder of ``reproduce modes``)
+MODES = ("modes.csv", "agreement.csv", "report.md", "mode_shapes_in_plane.png",
+         "mode_shapes_out_of_plane.png")
 #: ``stress`` and ``reproduce stress``
 STRESS = ("summary.csv", "report.md")
 #: ``bench``
@@ -39,10 +43,11 @@ STUDY_FILES = {
     "wang2014": ("table2.csv", "drag_fit.csv", "vfife_matched.csv", "configurations.png",
                  "forces.png", "report.md"),
     "yu2021": ("table.csv", "report.md", "layout.png", "gap.png", "buoyancy_loss.png",
-               "current.png", "moved_up.png"),
+               "current.png", "moved_up.png", "dynamics.csv", "dynamics.png"),
     "compare": COMPARE,
     "stress": STRESS,
     "cost": COST,
+    "modes": MODES,
 }
 
 
@@ -86,6 +91,6 @@ def clear(folder: str | Path | None, names: tuple[str, ...]) -> list[Path]:
 
 def clear_unit(study: str, unit: str | None, study_folder: str | Path) -> list[Path]:
     """Clear what one unit of ``reproduce`` writes: ``study_folder/unit`` for the studies
-    with a folder per scene (compare, cost), else ``study_folder``."""
+    with a folder per scene (compare, cost, modes), else ``study_folder``."""
     folder = Path(study_folder) / unit if unit is not None else Path(study_folder)
     return clear(folder, STUDY_FILES[study])

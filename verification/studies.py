@@ -18,7 +18,7 @@ from .study import Study
 #: study name -> its module, in the order ``reproduce all`` lists them
 STUDY_MODULES = {"wang2014": "verification.wang2014", "yu2021": "verification.yu2021",
                  "compare": "verification.compare_report", "stress": "verification.stress",
-                 "cost": "verification.cost"}
+                 "cost": "verification.cost", "modes": "verification.modes_study"}
 #: the study names (``riser-verify reproduce NAME``)
 STUDIES = tuple(STUDY_MODULES)
 #: environment of the worker processes of ``reproduce --jobs N`` (N > 1), unless already

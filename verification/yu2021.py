@@ -39,6 +39,8 @@ from .catalog import resolve
 from .pipeline import solve_scene
 from .report import GENERATED_NOTE, md_table, new_figure, pct, save
 from .study import Study
+from .yu2021_dynamics import TOP_SPEED
+from .yu2021_dynamics import run as run_dynamics
 
 DEPTH = 500.0
 BUOYANCY = 1130.0          # N/m
@@ -186,8 +188,10 @@ def cases(xh: float) -> list[tuple[str, str, Scene]]:
 
 
 def run(out_dir: str | Path = "reports/yu2021", methods=("bvp", "vfife"), log=print,
-        element_length: float | None = None) -> pd.DataFrame:
-    """Run every case with the given methods; write table.csv, report.md and figures."""
+        element_length: float | None = None, note: str = "") -> pd.DataFrame:
+    """Run every case with the given methods; write table.csv, report.md and figures, and
+    with the VFIFE the dynamic study (:mod:`verification.yu2021_dynamics`: dynamics.csv,
+    dynamics.png and the report's section); ``note``: a sentence on contended timings."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     t0 = time.perf_counter()
@@ -221,7 +225,10 @@ def run(out_dir: str | Path = "reports/yu2021", methods=("bvp", "vfife"), log=pr
     df = pd.DataFrame(rows, columns=COLUMNS)
     df.to_csv(out / "table.csv", index=False, float_format="%.8g")
     _figures(results, out, methods)
-    _report(df, out, xh, stored, timing, time.perf_counter() - t0, methods)
+    dyn = run_dynamics(out, {f"A{k}": sheared(with_hang_off_x(resolve(f"yu2021-a{k}"), xh),
+                                              TOP_SPEED) for k in "123"},
+                       log, element_length, note=note) if "vfife" in methods else []
+    _report(df, out, xh, stored, timing, time.perf_counter() - t0, methods, dyn)
     return df
 
 
@@ -279,7 +286,7 @@ def _figures(results: dict, out: Path, methods) -> None:
 
 
 def _report(df: pd.DataFrame, out: Path, xh: float, stored: float, timing: dict, total: float,
-            methods) -> None:
+            methods, dynamics: list[str]) -> None:
     has_vf = "vfife" in methods
     lines = [
         "# Yu et al. (2021): multi-buoy lazy-wave riser studies, BVP" + (" and VFIFE" if has_vf else ""),
@@ -336,6 +343,7 @@ def _report(df: pd.DataFrame, out: Path, xh: float, stored: float, timing: dict,
                               [(r.case, r.quantity, r.paper, r.bvp, r.vfife, pct(r.bvp_rel_err, 1),
                                 pct(r.vfife_rel_err, 1)) for r in sub.itertuples()]))
         lines += ["", f"![{study}]({study}.png)" if study != "buoyancy" else "", ""]
+    lines += dynamics
     lines += ["## Files", "", "`table.csv`: columns " + ", ".join(f"`{c}`" for c in COLUMNS) +
               "; tensions in N, moments in N m, positions in m (paper frame), angles in deg "
               "from vertical.", ""]
@@ -362,6 +370,6 @@ def index_row(d: Path):
     return cases, "; ".join(parts), "reported (paper inputs incomplete)"
 
 
-STUDY = Study("yu2021", (None,), lambda unit, out, note, full: run(out), index_row,
-              seconds={None: 94})
+STUDY = Study("yu2021", (None,), lambda unit, out, note, full: run(out, note=note), index_row,
+              seconds={None: 115})
 

@@ -76,6 +76,8 @@ def blow_up_cause(info: dict) -> str:
                       "[vfife] time_step_safety")
     if "drag" in steps and steps["drag"] < 3.0 * dt:
         causes.append("explicit drag near its stability limit (strong current or light line)")
+    if info.get("emerging"):
+        causes.append("a node leaving the water (no added mass there: a shorter stable step)")
     if "seabed" in steps and steps["seabed"] < 3.0 * dt:
         causes.append("seabed stiffness too high for the step")
     if not causes:
@@ -105,16 +107,23 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
                   drag=True, surface=True)
     model.X[:] = static.X
     model.D[:] = static.D
+    tm = dyn.top_motion
     kseabed = scene.seabed.stiffness if scene.seabed is not None else 0.0
     tmax = float(np.max(np.abs(static.nodal_results()["element_tension"])))
-    steps = critical_steps(mesh, rot_scale=rot_scale, tension=1.5 * tmax, added_mass=added,
+    # a node that can leave the water loses its added mass: its transverse step is then
+    # shorter by sqrt(m / (m + m_a)) (0.75 for Yu's flexible riser)
+    reach = 0.0 if tm is None else (tm.amplitude if tm.times is None
+                                    else float(np.max(np.abs(tm.displacements))))
+    emerge = model.use_surface and (float(np.max(static.X[1])) + reach
+                                    >= 0.99 * scene.water_depth)
+    steps = critical_steps(mesh, rot_scale=rot_scale, tension=1.5 * tmax,
+                           added_mass=added and not emerge,
                            seabed_stiffness=kseabed, seabed_damping=model.cseabed,
                            drag_speed=2.0 * max_speed_hint(scene)
                            if model.use_drag else 0.0)
     dt, limit = choose_step(steps, vf.time_step_safety)
     if vf.time_step is not None:          # user-fixed step (may exceed the critical)
         dt, limit = float(vf.time_step), "user ([vfife] time_step)"
-    tm = dyn.top_motion
     out_dt = dyn.output_interval
     env_dt = out_dt
     if tm is not None and tm.times is None:
@@ -143,7 +152,8 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
             status = "blow-up"
             message = (f"dynamics diverged (blow-up) at t = {t:.4g} s (NaN/inf or speed > "
                        "1000 m/s); likely cause: "
-                       + blow_up_cause({"critical_steps": steps, "time_step": dt}))
+                       + blow_up_cause({"critical_steps": steps, "time_step": dt,
+                                        "emerging": model.use_surface and not emerge}))
             break
         # energy-growth guard: kinetic energy far above the work the motion can put in
         if e0 is None:
@@ -152,7 +162,8 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
             status = "blow-up"
             message = (f"dynamics diverged (blow-up, energy growth) at t = {t:.4g} s (kinetic "
                        f"energy {ke:.3g} J); likely cause: "
-                       + blow_up_cause({"critical_steps": steps, "time_step": dt}))
+                       + blow_up_cause({"critical_steps": steps, "time_step": dt,
+                                        "emerging": model.use_surface and not emerge}))
             break
         rec.sample(t, model, ke, (j + 1) % per_out == 0)
         if report is not None and ((j + 1) % max(1, n_env // PROGRESS_REPORTS) == 0

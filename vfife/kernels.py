@@ -294,8 +294,8 @@ def _rotate_3d(i, dx, dy, dz, wx, wy, wz, px, py, pz, jinv, jrot, dt, c1, c2):
 @njit(**_JIT)
 def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a2,
               b0, b1, b2, wload, mass, im, imd, jinv, jrot, kst, cseabed, mu, vfric,
-              U, cdn, cdt, cdir, use_drag, qd0, qd1, qd2, use_dashpot, wair, iair, ysurf,
-              use_surface, dt, c, stats, R, RM):
+              U, cdn, cdt, cdir, use_drag, qd0, qd1, qd2, use_dashpot, wair, iair, madd,
+              sband, dband, ysurf, use_surface, dt, c, stats, R, RM):
     """Fused node pass (3D): nodal force = f[i] - f[i-1] - weight (+ seabed, + drag),
     moment = a[i] + b[i-1]; central-difference update of the translations of nodes
     1..n-2 (added mass normal to the director: im = 1/(m + ma), imd = 1/m - im) and of
@@ -310,9 +310,13 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
     length [kg/m] (cdt uses the perimeter, pi D).
     qd0..qd2 (ne,): axial dashpot forces of :func:`dashpot_pass` (statics, read only when
     use_dashpot; added after the residual is measured).
-    Sea surface (when use_surface): a node above y = ysurf [m] is in air: its weight is
-    wair (n,) [N] (no buoyancy), its inverse mass iair = 1/m (no added mass) and it feels
-    no drag (a node-wise switch on the node's height).
+    Sea surface (when use_surface): a node's line segment (its tributary length sband
+    (n,) [m]) is immersed by the fraction q = clip((ysurf - y) / b + 1/2, 0, 1), with b =
+    max(dband, sband |d_y|) the vertical extent of that segment (dband (n,) the outer
+    diameter [m]): the exact fraction for a straight segment, continuous as a node
+    crosses the surface (a node-wise on/off switch made the results depend on mesh and
+    step). Weight wair + q (wload - wair) (wair (n,) the weight in air [N]), mass m + q
+    m_a normal to the axis (madd (n,) [kg]; iair = 1/m), drag x q.
     Returns (max squared free-node force [N2], max squared moment [N2 m2], 2 x KE [J]);
     the two maxima are 0 unless ``stats``."""
     n = x.shape[0]
@@ -337,11 +341,12 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
         imi = im[i]
         imdi = imd[i]
         wet = 1.0
-        if use_surface:                   # branch-free select on the node's height
-            wet = 1.0 if y[i] <= ysurf else 0.0
+        if use_surface:                   # immersed fraction of the node's segment
+            band = max(dband[i], sband[i] * abs(dy[i]))
+            wet = min(max((ysurf - y[i]) / band + 0.5, 0.0), 1.0)
             wi = wair[i] + wet * (wi - wair[i])
-            imi = iair[i] + wet * (imi - iair[i])
-            imdi = wet * imdi
+            imi = 1.0 / (mass[i] + wet * madd[i])
+            imdi = iair[i] - imi
         gx = f0[i] - f0[i - one]
         gy = f1[i] - f1[i - one] - wi
         gz = f2[i] - f2[i - one]
@@ -403,7 +408,8 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
 @njit(**_JIT)
 def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, jinv, jrot,
                  kst, cseabed, mu, vfric, U, cdn, cdt, cdir, use_drag, qd0, qd1,
-                 use_dashpot, wair, iair, ysurf, use_surface, dt, c, stats, R, RM):
+                 use_dashpot, wair, iair, madd, sband, dband, ysurf, use_surface, dt, c,
+                 stats, R, RM):
     """Planar version of :func:`node_pass` (w (n,) rotation rate about z, a0, b0 (ne,)
     moments about z, cdir (2,) in plane, qd0, qd1 (ne,) dashpot forces)."""
     n = x.shape[0]
@@ -436,10 +442,11 @@ def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, 
         imdi = imd[i]
         wet = 1.0
         if use_surface:                       # see node_pass
-            wet = 1.0 if y[i] <= ysurf else 0.0
+            band = max(dband[i], sband[i] * abs(dy[i]))
+            wet = min(max((ysurf - y[i]) / band + 0.5, 0.0), 1.0)
             wi = wair[i] + wet * (wi - wair[i])
-            imi = iair[i] + wet * (imi - iair[i])
-            imdi = wet * imdi
+            imi = 1.0 / (mass[i] + wet * madd[i])
+            imdi = iair[i] - imi
         gx = f0[i] - f0[i - one]
         gy = f1[i] - f1[i - one] - wi
         ux = vx[i]
@@ -495,8 +502,8 @@ def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, 
 @njit(**_JIT)
 def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd, jinv,
         jrot, wload, kst, cdn, cdt, heights, speeds, slopes, cdir, use_drag, cseabed, mu,
-        vfric, eta, Q, use_dashpot, wair, iair, ysurf, use_surface, dt, c, top0, top_axis,
-        top_disp, tol_f, tol_m, vmax):
+        vfric, eta, Q, use_dashpot, wair, iair, madd, sband, dband, ysurf, use_surface, dt, c,
+        top0, top_axis, top_disp, tol_f, tol_m, vmax):
     """Advance up to ``nsteps`` explicit steps.
 
     jinv, jrot : (n,) inverse rotational inertia [1/(kg m2)] (0 at a clamped end) and the
@@ -507,8 +514,9 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
         current profile (see :func:`current_pass`); cdir its unit heading.
     eta : (ne,) axial dashpot coefficients [N s/m] and Q (k, ne) scratch for their forces,
         used only when use_dashpot (statics; see :func:`dashpot_pass`).
-    wair, iair : (n,) weight in air [N] and inverse mass [1/kg] of the nodes above the sea
-        surface y = ysurf [m], used only when use_surface (dynamics; see :func:`node_pass`).
+    wair, iair, madd, sband, dband : (n,) weight in air [N], inverse mass [1/kg], added
+        mass [kg], tributary length and outer diameter [m] of the nodes, for the sea surface
+        y = ysurf [m], used only when use_surface (dynamics; see :func:`node_pass`).
     planar : use the planar kernels on rows 0-1 of X, V, D (z untouched) and W[2] as the
         rotation rate; F (2, ne), MA, MB (1, ne), cdir (2,) then.
     top0 (3,) hang-off position at zero displacement; top_axis (3,) unit axis; top_disp
@@ -542,8 +550,8 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
             r2, m2, k1 = node_pass_2d(X[0], X[1], V[0], V[1], D[0], D[1], Wz, F[0], F[1],
                                       MA[0], MB[0], wload, mass, im, imd, jinv, jrot, kst,
                                       cseabed, mu, vfric, U, cdn, cdt, cdir, use_drag,
-                                      Q[0], Q[1], use_dashpot, wair, iair, ysurf,
-                                      use_surface, dt, c, stats, R[0], R[1])
+                                      Q[0], Q[1], use_dashpot, wair, iair, madd, sband,
+                                      dband, ysurf, use_surface, dt, c, stats, R[0], R[1])
         else:
             element_pass(X[0], X[1], X[2], D[0], D[1], D[2], l0, kax, kb, F[0], F[1], F[2],
                          MA[0], MA[1], MA[2], MB[0], MB[1], MB[2])
@@ -553,8 +561,8 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
                                    W[0], W[1], W[2], F[0], F[1], F[2], MA[0], MA[1], MA[2],
                                    MB[0], MB[1], MB[2], wload, mass, im, imd, jinv, jrot,
                                    kst, cseabed, mu, vfric, U, cdn, cdt, cdir, use_drag,
-                                   Q[0], Q[1], Q[2], use_dashpot, wair, iair, ysurf,
-                                   use_surface, dt, c, stats, R[0], R[1])
+                                   Q[0], Q[1], Q[2], use_dashpot, wair, iair, madd, sband,
+                                   dband, ysurf, use_surface, dt, c, stats, R[0], R[1])
         ke = 0.5 * k1
         d1 = top_disp[k + 1]
         vt = (d1 - top_disp[k]) / dt

@@ -36,7 +36,8 @@ class Model:
         speed; the dynamics passes True whenever the line types have drag coefficients (a
         line moving through still water feels drag on its own velocity).
     surface : model the sea surface at ``water_depth`` (dynamics; needs a water depth):
-        nodes above it carry their weight in air, with no buoyancy, drag or added mass.
+        the part of a node's segment above it carries its weight in air, with no
+        buoyancy, drag or added mass (see :func:`vfife.kernels.node_pass`).
     """
 
     def __init__(self, scene: Scene, mesh: Mesh, *, rot_scale: float, added_mass: bool,
@@ -97,6 +98,7 @@ class Model:
         self.ysurf = float(scene.water_depth) if self.use_surface else math.inf
         self.wair = scene.gravity * self.mass       # weight in air [N] (pipe + contents)
         self.iair = 1.0 / self.mass
+        self.dnode = _node_diameters(scene, mesh)
         k = 2 if planar else 3
         self.F = np.zeros((k, ne))
         self.MA = np.zeros((k - 1 if planar else 3, ne))
@@ -185,7 +187,8 @@ class Model:
                           self.cdir[:2].copy() if self.planar else self.cdir, self.use_drag,
                           self.cseabed, self.mu, self.vfric,
                           self.eta, self.Q, self.use_dashpot, self.wair, self.iair,
-                          self.ysurf, self.use_surface, dt, c, top0, axis, top_disp,
+                          self.madd, self.trib, self.dnode, self.ysurf, self.use_surface,
+                          dt, c, top0, axis, top_disp,
                           tol_f, tol_m, vmax)
         self.steps += int(out[0])
         return out
@@ -251,6 +254,15 @@ class Model:
         ug = np.sum(self.wload * X[:, 1])
         return {"kinetic": float(ke), "axial": float(ua), "bending": float(ub),
                 "gravity": float(ug), "total": float(ke + ua + ub + ug)}
+
+
+def _node_diameters(scene: Scene, mesh: Mesh) -> np.ndarray:
+    """Outer diameter [m] at the nodes (a joint node takes the larger of its segments')."""
+    ends = np.cumsum([seg.length for seg in scene.segments])
+    d = np.array([scene.line_types[seg.line_type].outer_diameter for seg in scene.segments])
+    lo = np.clip(np.searchsorted(ends, mesh.s, side="left"), 0, len(d) - 1)
+    hi = np.clip(np.searchsorted(ends, mesh.s, side="right"), 0, len(d) - 1)
+    return np.maximum(d[lo], d[hi])
 
 
 def max_speed_hint(scene: Scene) -> float:

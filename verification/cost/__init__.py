@@ -1,12 +1,15 @@
 """What accuracy costs in time: convergence and cost study of both methods on one scene.
 
 ``riser-verify cost SCENE [--out DIR]`` (default ``reports/cost/SCENE/``) writes
-``runs.csv``, ``values.csv``, ``report.md`` and three plots. Modules: ``settings`` (the
-runs swept), ``runner`` (solving and timing them, :func:`study`), ``errors`` (quantity
-errors against a reference), ``fits`` (Richardson limit, order fits), ``touchdown`` (the
-lengths of the asymptotic range, the lift-off), ``analysis`` (what the runs say),
-``assessment`` (the wording of the order assessment), ``records`` (the run and study
-records and their tables) and ``report`` (Markdown, plots, CSV).
+``runs.csv``, ``values.csv``, ``dynamics.csv``, ``report.md`` and four plots. Modules:
+``settings`` (the runs swept), ``runner`` (solving and timing them, :func:`study`),
+``errors`` (quantity errors against a reference), ``fits`` (Richardson limit, order fits),
+``touchdown`` (the lengths of the asymptotic range, the lift-off), ``analysis`` (what the
+runs say), ``assessment`` (the wording of the order assessment), ``records`` (the run and
+study records and their tables), ``report`` (Markdown, plots, CSV), and the dynamic
+sweep: ``dynamics`` (its runs and records), ``dynamics_analysis`` (reference, errors,
+orders, step factor, recommendation) and ``dynamics_report`` (its report section, plot
+and ``dynamics.csv``).
 
 Protocol
 --------
@@ -20,6 +23,10 @@ Protocol
   tolerance, relaxation scheme (coarse-mesh sequencing, rotational-inertia scale), and the
   cost of one second of dynamics per element length. BVP: ``solve_bvp`` tolerance
   (1e-2 ... 1e-8), initial mesh size, node cap. Every setting not swept keeps its default.
+- Dynamics (:mod:`~verification.cost.dynamics`): 40 s of a 1.5 m heave at 10 s from the
+  static state of each element length, the same window for every run; cost and accuracy
+  (hang-off tension amplitude, peak moment) against element length and time-step factor,
+  against the finest length at the smallest factor (or a clean Richardson limit).
 - Fast and full sweep. ``riser-verify cost SCENE`` and ``reproduce all`` run the fast
   sweep (:data:`~verification.cost.settings.FAST_SWEEP`: BVP tolerances, VFIFE element
   lengths, coarse mesh 5 m, dynamics; ~1/6 of the time); ``--full`` adds the rest
@@ -62,10 +69,11 @@ from .settings import COST_SCENES, Setting, default_settings
 __all__ = ["COST_SCENES", "STUDY", "CostStudy", "Run", "Setting", "default_settings",
            "recommendations", "study", "write"]
 
-#: the study of the registry (:mod:`verification.studies`): one unit per scene; measured
-#: wall times [s] of ``reproduce all`` on 2 processes of this 2-core machine, fast sweep
-#: and (``--full``) full sweep
+#: the study of the registry (:mod:`verification.studies`): one unit per scene; wall
+#: times [s] of ``reproduce all`` on 2 processes of this 2-core machine, fast sweep and
+#: (``--full``) full sweep: measured before the dynamic sweep, plus its time measured in
+#: single-scene runs (fast 17-27 s, full 45-125 s; a shared machine)
 STUDY = Study("cost", COST_SCENES, run_unit, index_row,
-              seconds={"yu2021-a2-sheared": 46, "yu2021-a3": 42, "wang2014-baseline": 26},
-              full_seconds={"yu2021-a2-sheared": 303, "wang2014-baseline": 268,
-                            "yu2021-a3": 244})
+              seconds={"yu2021-a2-sheared": 63, "yu2021-a3": 61, "wang2014-baseline": 53},
+              full_seconds={"yu2021-a2-sheared": 363, "wang2014-baseline": 391,
+                            "yu2021-a3": 304})

@@ -73,6 +73,7 @@ class CostStudy:
     notes: list = field(default_factory=list)
     elapsed_s: float = 0.0
     sweep: str = "full"              # 'fast' (default), 'full' (--full), 'quick', 'given'
+    dynamics: object = None          # the dynamic sweep (dynamics.DynStudy), or None
 
     @property
     def has_order_sweep(self) -> bool:

@@ -9,6 +9,7 @@ import numpy as np
 import pandas as pd
 
 from ..report import GENERATED_NOTE, md_table, new_figure, save
+from . import dynamics_report
 from .analysis import recommendations
 from .assessment import EXPECTED_ORDER, ORDER_BAND, order_assessment
 from .errors import QUANTITIES, QUANTITY_LABEL, family
@@ -92,7 +93,8 @@ def report_markdown(st: CostStudy) -> str:
     L += _limit_section(st)
     L += _order_section(st)
     L += _scaling_section(st)
-    L += ["## Runs", ""]
+    L += dynamics_report.section(st, st.dynamics)
+    L += ["", "## Runs", ""]
     for method in ("bvp", "vfife"):
         rows = []
         for r in st.runs:
@@ -107,10 +109,13 @@ def report_markdown(st: CostStudy) -> str:
                         "converged"], rows), ""]
     L += ["## Figures", "", "![error vs wall time](error_vs_time.png)", "",
           "![error vs element length](error_vs_element_length.png)", "",
-          "![time vs elements](time_vs_elements.png)", "",
-          "Files: `runs.csv` (one row per run: " + ", ".join(f"`{c}`" for c in RUN_COLUMNS)
+          "![time vs elements](time_vs_elements.png)", ""]
+    if st.dynamics is not None and st.dynamics.ref_run is not None:
+        L += [f"![dynamics: error vs cost and element length]({dynamics_report.FIGURE})", ""]
+    L += ["Files: `runs.csv` (one row per run: " + ", ".join(f"`{c}`" for c in RUN_COLUMNS)
           + ", then " + ", ".join(f"`{c}`" for c in EXTRA_COLUMNS) + "), `values.csv` (the "
-          "raw quantities of every run and of the reference).", ""]
+          "raw quantities of every run and of the reference)."
+          + dynamics_report.files_line(st.dynamics), ""]
     return "\n".join(L)
 
 
@@ -311,7 +316,8 @@ def _plots(st: CostStudy, out: Path) -> None:
     ax.set_title(f"{st.scene.name}: VFIFE convergence in element length\n(`{sweep}` "
                  f"rows; {fitted})", fontsize=10)
     ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=7)
+    if ax.get_legend_handles_labels()[0]:        # no VFIFE run (given settings): none
+        ax.legend(fontsize=7)
     save(fig, out / "error_vs_element_length.png")
 
     fig, axes = new_figure(1, 1, (8, 5))
@@ -334,12 +340,14 @@ def _plots(st: CostStudy, out: Path) -> None:
 
 
 def write(st: CostStudy, out_dir: str | Path) -> None:
-    """``runs.csv``, ``values.csv``, ``report.md`` and the plots into ``out_dir``."""
+    """``runs.csv``, ``values.csv``, ``report.md``, the plots and (with a dynamic sweep)
+    ``dynamics.csv`` and its figure into ``out_dir``."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     st.frame().to_csv(out / "runs.csv", index=False, float_format="%.6g")
     st.values_frame().to_csv(out / "values.csv", index=False, float_format="%.10g")
     _plots(st, out)
+    dynamics_report.write(st, st.dynamics, out)
     (out / "report.md").write_text(report_markdown(st))
 
 

@@ -19,7 +19,9 @@ from ..catalog import resolve
 from ..pipeline import vfife_equivalent
 from ..progress import with_fraction
 from ..quantities import raw_values, reference_depth
+from . import dynamics as dyn
 from .analysis import analyse, cost_scaling
+from .dynamics_analysis import analyse as analyse_dynamics
 from .errors import densified, distance, rel_errors
 from .records import CostStudy, Run
 from .report import write
@@ -139,13 +141,16 @@ def run_setting(s: Setting, scene: Scene, repeats: int, compile_s: float,
 
 def study(scene: Scene, *, repeats: int = 3, quick: bool = False, element_lengths=None,
           settings: list[Setting] | None = None, progress=True,
-          stream=None, full: bool = False) -> CostStudy:
+          stream=None, full: bool = False, dynamics=None) -> CostStudy:
     """Run the study on ``scene`` (see :mod:`verification.cost`): ``settings`` (default
     :func:`~verification.cost.settings.default_settings` of ``quick``, ``element_lengths``
     and ``full``, the order sweep planned from the reference's asymptotic length),
     each timed as the median of up to ``repeats`` runs; ``progress``: a progress line on
     ``stream`` (default stderr), False: none, or a callable ``progress(message,
-    fraction=None)`` told of each finished run (:mod:`verification.progress`)."""
+    fraction=None)`` told of each finished run (:mod:`verification.progress`).
+    ``dynamics``: the dynamic sweep (:mod:`verification.cost.dynamics`); None: the
+    default of the sweep (fast, full or quick; none with given ``settings``), False: none,
+    or (element length, step factor) pairs."""
     t_start = time.perf_counter()
     repeats = max(1, int(repeats))
     notes = []
@@ -156,8 +161,12 @@ def study(scene: Scene, *, repeats: int = 3, quick: bool = False, element_length
         notes.append(f"Both methods solve the fixed-ends equivalent of the scene ({eq.note}; "
                      f"the seabed is a property of the soil, the same for every run of both "
                      f"methods; conversion {eq.seconds:.2f} s, in no run's time).")
-    runs, ref = _solve_all(scene, fixed, settings, (quick, element_lengths, full), repeats,
-                           compile_s, progress, stream)
+    sweep = "given" if settings is not None else "quick" if quick else "full" if full \
+        else "fast"
+    dyn_settings = _dynamic_plan(fixed, sweep, dynamics, element_lengths)
+    runs, ref, dyn_runs, static_s = _solve_all(
+        scene, fixed, settings, (quick, element_lengths, full), repeats, compile_s, progress,
+        stream, dyn_settings)
     ref_sm = summarize(ref.profile)
     depth = reference_depth(fixed, ref_sm)
     ref_values = raw_values(ref.profile)
@@ -169,8 +178,13 @@ def study(scene: Scene, *, repeats: int = 3, quick: bool = False, element_length
         r.errors = rel_errors(r.values, ref_values, depth)
         r.errors["curve_distance"] = distance(dense, r.profile, depth)
     st = CostStudy(scene, fixed, depth, repeats, runs, ref, ref_values, notes=notes,
-                   sweep="given" if settings is not None else
-                   "quick" if quick else "full" if full else "fast")
+                   sweep=sweep)
+    if dyn_settings:
+        sweep_s = static_s.pop("sweep_s")
+        st.dynamics = dyn.DynStudy(dyn_runs, fixed.vfife.time_step_safety,
+                                   sweep if dynamics is None else "given",
+                                   dyn.surface_piercing(fixed), static_s, elapsed_s=sweep_s)
+        analyse_dynamics(st.dynamics)
     if eq.paper is not None:
         psm = eq.paper.summary()
         st.paper_difference = {q: (psm[q] - ref_sm[q]) / abs(ref_sm[q])
@@ -181,18 +195,33 @@ def study(scene: Scene, *, repeats: int = 3, quick: bool = False, element_length
     return st
 
 
+def _dynamic_plan(fixed: Scene, sweep: str, dynamics, element_lengths=None) -> list:
+    """The dynamic runs of the study (see :func:`study`'s ``dynamics``; given
+    ``element_lengths`` replace the sweep's lengths)."""
+    if dynamics is None:
+        return [] if sweep == "given" else dyn.dynamic_settings(fixed, sweep,
+                                                                  element_lengths)
+    if dynamics is False:
+        return []
+    return [s if isinstance(s, dyn.DynSetting) else dyn.DynSetting(*map(float, s))
+            for s in dynamics]
+
+
 def _solve_all(scene: Scene, fixed: Scene, settings, plan: tuple, repeats: int,
-               compile_s: float, progress, stream) -> tuple[list, Run]:
+               compile_s: float, progress, stream, dyn_settings=()) -> tuple:
     """Every setting solved on ``fixed`` (BVP first); without given ``settings`` the VFIFE
     ones are planned once the reference is known, from ``plan`` = (quick,
-    element_lengths, full) of :func:`default_settings`. Returns (runs, reference)."""
+    element_lengths, full) of :func:`default_settings`; then the dynamic runs
+    ``dyn_settings`` from the static states. Returns (runs, reference, dynamic runs, the
+    seconds of statics solved for the dynamics only)."""
     given = settings is not None
     quick, element_lengths, full = plan
     if settings is None:
         settings = default_settings(fixed, quick, element_lengths, full=full)
     settings = sorted(settings, key=lambda s: METHOD_ORDER[s.method])
-    prog = Progress(len(settings), scene.name, stream,
-                    [predicted_cost(s) for s in settings],
+    dyn_weights = [dyn.predicted_cost(fixed, s) for s in dyn_settings]
+    prog = Progress(len(settings) + len(dyn_settings), scene.name, stream,
+                    [predicted_cost(s) for s in settings] + dyn_weights,
                     sink=with_fraction(progress) if callable(progress) else None) \
         if progress else None
     runs: list[Run] = []
@@ -208,7 +237,7 @@ def _solve_all(scene: Scene, fixed: Scene, settings, plan: tuple, repeats: int,
                 settings = settings[:i] + [t for t in default_settings(
                     fixed, quick, element_lengths, asym, full) if t.method != "bvp"]
                 if prog:
-                    prog.plan([predicted_cost(t) for t in settings[i:]])
+                    prog.plan([predicted_cost(t) for t in settings[i:]] + dyn_weights)
                 s = settings[i]
         run = run_setting(s, fixed, repeats, compile_s, static_cache)
         runs.append(run)
@@ -216,7 +245,16 @@ def _solve_all(scene: Scene, fixed: Scene, settings, plan: tuple, repeats: int,
             prog.step(f"{run.method} {s.setting}={s.value:g}: "
                       f"{run.wall_time_s:.3g} s" + ("" if run.converged else ", not converged"))
         i += 1
-    return runs, ref or _reference(runs, scene)
+    ref = ref or _reference(runs, scene)
+    dyn_runs, static_s = [], {"sweep_s": time.perf_counter()}
+    for s in dyn_settings:
+        r = dyn.run_dynamic(s, fixed, repeats, static_cache, static_s, REPEAT_BELOW_S)
+        dyn_runs.append(r)
+        if prog:
+            prog.step(f"vfife dynamics {s.element_length:g} m, factor {s.factor:g}: "
+                      f"{r.wall_s:.3g} s" + ("" if r.converged else ", failed"))
+    static_s["sweep_s"] = time.perf_counter() - static_s["sweep_s"]
+    return runs, ref, dyn_runs, static_s
 
 
 def _reference(runs: list, scene: Scene) -> Run:

@@ -8,6 +8,8 @@ from dataclasses import dataclass, field
 
 from riser.scene import Scene
 
+from .dynamics import FAST_DYNAMICS, FULL_DYNAMICS
+
 #: scenes of the study (``riser-verify reproduce all``)
 COST_SCENES = ("wang2014-baseline", "yu2021-a3", "yu2021-a2-sheared")
 
@@ -40,17 +42,18 @@ CHECK_FACTOR = 10.0
 #: built-in scene; the other relaxation values are in the full sweep only
 FAST_RELAXATION = {"coarse_element_length": (5.0,)}
 #: what ``--full`` adds to the fast sweep, in words (the report says it): ~85 % of the
-#: full study's time (built-in scenes: fast 26-46 s, full 244-303 s in ``reproduce``),
-#: most of it the order sweep at the tight creep tolerance
+#: full study's time (built-in scenes before the dynamic sweep: fast 26-46 s, full
+#: 244-303 s in ``reproduce``), most of it the order sweep at the tight creep tolerance;
+#: the dynamic sweep adds 17-27 s to the fast and 45-125 s to the full study
 FULL_ADDS = ("the BVP initial-mesh and node-cap rows, the other VFIFE relaxation settings "
              "(time-step safety, static tolerance, coarse meshes of 2 and 20 m, "
-             "rotational-inertia scale) and the order sweep at tight tolerances "
+             "rotational-inertia scale), the order sweep at tight tolerances "
              "(`element_length_tight`) with its relaxation check "
-             "(`element_length_tight_check`)")
+             "(`element_length_tight_check`), and " + FULL_DYNAMICS)
 #: what the fast sweep runs, in words (the report says it)
 FAST_SWEEP = ("the BVP tolerance sweep, the VFIFE element-length sweep at the default "
-              "tolerances, mesh sequencing from a 5 m coarse mesh at 2 m, and one second "
-              "of dynamics per element length")
+              "tolerances, mesh sequencing from a 5 m coarse mesh at 2 m, one second "
+              "of dynamics per element length, and " + FAST_DYNAMICS)
 
 
 @dataclass

@@ -1,0 +1,301 @@
+"""The linearised free-vibration equations about the BVP static solution, and a box-scheme
+eigen-solver that gives the starting modes (the model and its derivation are in the
+docstring of :mod:`bvp.modes`).
+
+The line is cut into *pieces*: the scene's segments, split where the static line enters
+or leaves the seabed, so that every coefficient is smooth on a piece and jumps only at
+its ends. On a piece the static state (theta, T, kappa = M/EI, F, y) is a cubic spline in
+s of the converged profile; the perturbation obeys y' = (A(s) + omega^2 B(s)) y.
+
+Families (``FAMILIES``): ``in_plane`` with the state [dx, dy, dtheta, dM, dF, dT] and
+``out_of_plane`` with the state [w, psi, B, Q] (z displacement, z component of the unit
+tangent, bending moment about the in-plane normal, z shear force).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.interpolate import CubicSpline
+from scipy.sparse import coo_matrix
+from scipy.sparse.linalg import LinearOperator, eigs, splu
+
+from riser.profile import Profile
+from riser.scene import Scene
+from riser.sections import segment_properties
+
+
+@dataclass
+class Piece:
+    """One smooth stretch of line [s0, s1] [m]: section values (EI [N m2], 1/EA [1/N],
+    mass m and normal added mass ma [kg/m], submerged weight w [N/m]), the seabed law of
+    the static solve (``k`` [N/m2]) and whether the static line lies in it (``contact``:
+    the linearised spring k acts on dy), and the splines of the static state."""
+
+    s0: float
+    s1: float
+    EI: float
+    inv_EA: float
+    m: float
+    ma: float
+    w: float
+    k: float
+    contact: bool
+    spl: dict = field(repr=False, default_factory=dict)
+
+    @property
+    def length(self) -> float:
+        return self.s1 - self.s0
+
+    def static(self, s: np.ndarray) -> dict:
+        """Static state at arc lengths ``s``: theta, T, kappa, F, y, the seabed reaction p
+        [N/m] and the linearised spring kc [N/m2] (k in contact, else 0)."""
+        out = {key: f(s) for key, f in self.spl.items()}
+        y = out["y"]
+        if self.contact:
+            out["p"] = -self.k * y
+        else:
+            out["p"] = self.k * np.maximum(-y, 0.0)
+        out["kc"] = self.k if self.contact else 0.0
+        return out
+
+
+@dataclass(frozen=True)
+class Family:
+    """One family of modes: its state names, the displacement rows, the end conditions."""
+
+    plane: str
+    names: tuple
+    disp: tuple            # state index -> shape component (x, y, z) for displacements
+    pinned: tuple          # states zero at a pinned, moment-free end
+    clamped: tuple         # states zero at a clamped end
+
+    @property
+    def n(self) -> int:
+        return len(self.names)
+
+    def matrices(self, pc: Piece, s: np.ndarray):
+        """(A, B), each (n, n, m): y' = (A + omega^2 B) y at arc lengths s."""
+        st = pc.static(s)
+        m = s.size
+        c, sn = np.cos(st["theta"]), np.sin(st["theta"])
+        T, kap, F = st["T"], st["kappa"], st["F"]
+        e1 = 1.0 + T * pc.inv_EA
+        mn = pc.m + pc.ma
+        A = np.zeros((self.n, self.n, m))
+        B = np.zeros_like(A)
+        if self.plane == "in_plane":
+            dx, dy, dth, dM, dF, dT = range(6)
+            A[dx, dth] = -e1 * sn
+            A[dx, dT] = c * pc.inv_EA
+            A[dy, dth] = e1 * c
+            A[dy, dT] = sn * pc.inv_EA
+            A[dth, dM] = 1.0 / pc.EI
+            A[dM, dF] = e1
+            A[dM, dT] = F * pc.inv_EA
+            A[dF, dT] = kap
+            A[dF, dM] = T / pc.EI
+            A[dF, dth] = (pc.w - st["p"]) * sn
+            A[dF, dy] = -st["kc"] * c
+            A[dT, dF] = -kap
+            A[dT, dM] = -F / pc.EI
+            A[dT, dth] = (pc.w - st["p"]) * c
+            A[dT, dy] = st["kc"] * sn
+            B[dF, dx] = -mn * sn
+            B[dF, dy] = mn * c
+            B[dT, dx] = -pc.m * c
+            B[dT, dy] = -pc.m * sn
+        else:
+            w, psi, bm, q = range(4)
+            A[w, psi] = e1
+            A[psi, bm] = 1.0 / pc.EI
+            A[bm, psi] = e1 * T - pc.EI * kap * kap
+            A[bm, q] = -e1
+            B[q, w] = -mn
+        return A, B
+
+    def mass(self, pc: Piece, s: np.ndarray) -> np.ndarray:
+        """(n, n, m): u^T W u is the kinetic-energy density / omega^2 (m along the axis,
+        m + ma normal to it)."""
+        W = np.zeros((self.n, self.n, s.size))
+        mn = pc.m + pc.ma
+        if self.plane == "in_plane":
+            th = pc.spl["theta"](s)
+            c, sn = np.cos(th), np.sin(th)
+            W[0, 0] = pc.m * c * c + mn * sn * sn
+            W[1, 1] = pc.m * sn * sn + mn * c * c
+            W[0, 1] = W[1, 0] = (pc.m - mn) * c * sn
+        else:
+            W[0, 0] = mn
+        return W
+
+    def shape(self, Y: np.ndarray) -> np.ndarray:
+        """(k, 3) displacement components x, y, z of states Y (n, k)."""
+        out = np.zeros((Y.shape[1], 3))
+        for i, comp in enumerate(self.disp):
+            if comp is not None:
+                out[:, comp] = Y[i]
+        return out
+
+
+FAMILIES = {
+    "in_plane": Family("in_plane", ("dx", "dy", "dtheta", "dM", "dF", "dT"),
+                       (0, 1, None, None, None, None), (0, 1, 3), (0, 1, 2)),
+    "out_of_plane": Family("out_of_plane", ("w", "psi", "B", "Q"), (2, None, None, None),
+                           (0, 2), (0, 1)),
+}
+
+
+# ------------------------------------------------------------------ static line -> pieces
+def _signed(magnitude: np.ndarray, of: np.ndarray, s: np.ndarray) -> np.ndarray:
+    """``magnitude`` signed with the slope of ``of`` along s (a cubic spline's derivative)."""
+    return magnitude * np.sign(CubicSpline(s, of)(s, 1))
+
+
+def build_pieces(scene: Scene, profile: Profile) -> list[Piece]:
+    """The pieces of the static ``profile`` of ``scene`` (see the module docstring).
+
+    Moment and shear are magnitudes in a profile: the moment takes the sign of dtheta/ds,
+    the shear that of dM/ds (M' = (1 + eps) F)."""
+    props = segment_properties(scene)
+    extensible = scene.axial_model == "extensible"
+    k = scene.seabed.stiffness if scene.seabed_model == "elastic" else 0.0
+    s_all = profile.s
+    breaks = _contact_breaks(profile) if k > 0.0 else []
+    pieces = []
+    for p in props:
+        sel = (s_all >= p.s_start - 1e-9) & (s_all <= p.s_end + 1e-9)
+        idx = np.flatnonzero(sel)
+        keep = np.concatenate([[True], np.diff(s_all[idx]) > 1e-4])  # thin near-duplicates
+        idx = idx[keep]
+        s = s_all[idx]
+        th = profile.theta[idx]
+        kap = _signed(profile.curvature[idx], th, s)
+        F = _signed(profile.shear[idx], p.EI * kap, s)
+        spl = {"theta": CubicSpline(s, th), "T": CubicSpline(s, profile.tension[idx]),
+               "kappa": CubicSpline(s, kap), "F": CubicSpline(s, F),
+               "y": CubicSpline(s, profile.y[idx])}
+        inv_EA = 1.0 / p.EA if extensible and p.EA else 0.0
+        cuts = [p.s_start] + [b for b in breaks if p.s_start + 1e-3 < b < p.s_end - 1e-3]
+        cuts.append(p.s_end)
+        for a, b in zip(cuts[:-1], cuts[1:]):
+            mid = 0.5 * (a + b)
+            in_zone = profile.tdp_s is not None and b <= profile.tdp_s + 1e-6 \
+                and profile.y[0] <= 1e-9
+            contact = k > 0.0 and (in_zone or float(spl["y"](mid)) < 0.0)
+            pieces.append(Piece(a, b, p.EI, inv_EA, p.mass, p.added_mass, p.weight, k,
+                                contact, spl))
+    return pieces
+
+
+def _contact_breaks(profile: Profile) -> list[float]:
+    """Arc lengths where the static line enters or leaves the seabed: the lift-off point
+    of the contact zone at the bottom end (the BVP's ``tdp_s``) and any crossing of y = 0
+    beyond it."""
+    s, y = profile.s, profile.y
+    out = []
+    start = 0.0
+    if profile.tdp_s is not None and y[0] <= 1e-9:
+        out.append(float(profile.tdp_s))
+        start = float(profile.tdp_s) + 1e-6
+    beyond = s > start
+    sb, yb = s[beyond], y[beyond]
+    for j in np.flatnonzero(np.signbit(yb[1:]) != np.signbit(yb[:-1])):
+        if yb[j] == yb[j + 1]:
+            continue
+        cand = sb[j] + (0.0 - yb[j]) / (yb[j + 1] - yb[j]) * (sb[j + 1] - sb[j])
+        if not out or cand - out[-1] > 1e-2:
+            out.append(float(cand))
+    return out
+
+
+# ------------------------------------------------------------------ box scheme guesses
+def state_scales(pieces: list[Piece], fam: Family, count: int) -> np.ndarray:
+    """Typical size of each state for a unit displacement over a wavelength l (the line
+    over count + 1): rotations 1/l, moments EI/l^2, forces T/l (a string's shear)."""
+    L = pieces[-1].s1 - pieces[0].s0
+    ell = L / (count + 1)
+    EI = max(pc.EI for pc in pieces)
+    Tmax = max(float(np.max(np.abs(pc.spl["T"](np.linspace(pc.s0, pc.s1, 9)))))
+               for pc in pieces)
+    Tref = max(Tmax, EI / ell ** 2)
+    if fam.plane == "in_plane":
+        return np.array([1.0, 1.0, 1.0 / ell, EI / ell ** 2, Tref / ell, Tref / ell])
+    return np.array([1.0, 1.0 / ell, EI / ell ** 2, Tref / ell])
+
+
+def box_modes(pieces: list[Piece], fam: Family, ends: tuple, count: int,
+              intervals: int = 3000):
+    """Approximate lowest ``count`` (+ a few) modes by the box scheme (midpoint rule on
+    every interval of a grid with nodes at the piece ends: second order):
+    (Y[j+1] - Y[j]) / h = (A + lam B)(s_mid) (Y[j] + Y[j+1]) / 2, with the end rows
+    ``ends`` = (states zero at s = 0, states zero at s = L); a sparse generalised
+    eigenproblem K Y = lam M Y solved by shift-invert below zero.
+
+    Returns (lam (k,) [rad2/s2] ascending, grid s (N+1,), states (k, n, N+1) in SI)."""
+    n = fam.n
+    L = pieces[-1].s1 - pieces[0].s0
+    s = [np.array([pieces[0].s0])]
+    which = []
+    for i, pc in enumerate(pieces):
+        nk = max(16, int(math.ceil(intervals * pc.length / L)))
+        s.append(pc.s0 + pc.length * np.arange(1, nk + 1) / nk)
+        which.append(np.full(nk, i))
+    s = np.concatenate(s)
+    which = np.concatenate(which)
+    h = np.diff(s)
+    mid = s[:-1] + 0.5 * h
+    N = h.size
+    A = np.zeros((N, n, n))
+    Bm = np.zeros((N, n, n))
+    for i, pc in enumerate(pieces):
+        sel = which == i
+        a, b = fam.matrices(pc, mid[sel])
+        A[sel] = np.moveaxis(a, -1, 0)
+        Bm[sel] = np.moveaxis(b, -1, 0)
+    sc = state_scales(pieces, fam, count)
+    A = A * sc[None, None, :] / sc[None, :, None]
+    Bm = Bm * sc[None, None, :] / sc[None, :, None]
+    eye = np.eye(n)[None]
+    hh = 0.5 * h[:, None, None]
+    left, right = -eye - hh * A, eye - hh * A
+    b0, b1 = ends
+    r0 = len(b0)
+    rows_i = r0 + np.arange(N)[:, None, None] * n + np.arange(n)[None, :, None]
+    cols_j = np.arange(N)[:, None, None] * n + np.arange(n)[None, None, :]
+    R = np.broadcast_to(rows_i, (N, n, n))
+    Cl = np.broadcast_to(cols_j, (N, n, n))
+    rows = np.concatenate([np.arange(r0), R.ravel(), R.ravel(),
+                           r0 + N * n + np.arange(len(b1))])
+    cols = np.concatenate([np.asarray(b0), Cl.ravel(), (Cl + n).ravel(),
+                           N * n + np.asarray(b1)])
+    kv = np.concatenate([np.ones(r0), left.ravel(), right.ravel(), np.ones(len(b1))])
+    mv = np.concatenate([np.zeros(r0), (hh * Bm).ravel(), (hh * Bm).ravel(),
+                         np.zeros(len(b1))])
+    size = (N + 1) * n
+    K = coo_matrix((kv, (rows, cols)), shape=(size, size)).tocsc()
+    M = coo_matrix((mv, (rows, cols)), shape=(size, size)).tocsc()
+    # shift: a tenth of a string's first eigenvalue below zero (every eigenvalue of a
+    # stable static state is positive, so the nearest to the shift are the lowest)
+    mmax = max(pc.m + pc.ma for pc in pieces)
+    lam_est = (math.pi / L) ** 2 * sc[-1] * (L / (count + 1)) / mmax
+    sigma = -0.1 * lam_est
+    lu = splu((K - sigma * M).tocsc())
+    op = LinearOperator((size, size), matvec=lambda v: lu.solve(M @ v), dtype=float)
+    want = min(count + 4, size - 2)
+    mu, vec = eigs(op, k=want, which="LM", ncv=min(size - 1, max(2 * want + 1, 40)))
+    lam = sigma + 1.0 / mu
+    order = np.argsort(lam.real)
+    lam, vec = lam[order], vec[:, order]
+    keep = np.abs(lam.imag) <= 1e-6 * np.abs(lam.real)
+    lam, vec = lam.real[keep], vec[:, keep]
+    states = []
+    for v in vec.T:
+        v = v * np.exp(-1j * np.angle(v[np.argmax(np.abs(v))]))
+        Y = v.real.reshape(N + 1, n).T * sc[:, None]
+        disp = max(float(np.max(np.abs(Y[i]))) for i, c in enumerate(fam.disp)
+                   if c is not None)
+        states.append(Y / disp)
+    return lam, s, np.array(states)
