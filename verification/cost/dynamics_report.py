@@ -154,13 +154,14 @@ def _order_note(q: str, fit: dict, ds: DynStudy) -> str:
             (r for r in ds.runs if r.converged and r.factor == ds.default_factor
              and r.nodes_above_surface is not None), key=lambda r: -r.h))
         why = (f"the hang-off is {ds.surface['below']:g} m below the sea surface, so the "
-               f"{HEAVE_AMPLITUDE:g} m heave lifts the top of the line out of the water. A "
-               "node switches its weight (to its weight in air), added mass and drag at once "
-               "when it crosses the surface, so the emerged length is quantised by the node "
-               "spacing (an O(h) error whose constant changes from mesh to mesh), and a "
-               "mesh whose first free node stays under water misses the emergence "
-               f"altogether (free nodes above the surface in the window: {counts}); the "
-               "switch also makes the result depend on the time step (see Step factor)")
+               f"{HEAVE_AMPLITUDE:g} m heave lifts the top of the line out of the water. "
+               "Each free node takes the immersed fraction of its own stretch of line, but "
+               "the top half element belongs to the prescribed hang-off node, whose load "
+               "goes straight into the support: while half an element is longer than the "
+               "emerged length, the free nodes stay under water and the emergence is "
+               "missed (an error that stays put from mesh to mesh); once it is shorter, "
+               "the fraction resolves it and the error falls at once (free nodes above the "
+               f"surface in the window: {counts})")
     elif q == "peak_moment":
         why = ("a maximum over the nodes (the largest nodal value, not refined between "
                "nodes as the static peak is) and over the sample times: its error depends on "
@@ -244,7 +245,7 @@ def _step_lines(ds: DynStudy) -> list[str]:
                  "in the time step, needs `--full`.")
     L.append("- Expected order in the time step: 2 for the central differences; 1 where "
              "an explicit force acts on the lagged velocity (the Morison drag, the seabed "
-             "contact damping) or switches at a step (a node crossing the sea surface).")
+             "contact damping).")
     return L
 
 
