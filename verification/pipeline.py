@@ -26,7 +26,7 @@ from riser.profile import Profile
 from riser.result import METHODS, SolveResult
 from riser.scene import Scene
 from riser.transform import fixed_ends_scene
-from vfife.dynamic_outputs import ARC_LENGTH_KEYS
+from vfife.dynamic_outputs import ARC_LENGTH_COLUMNS, ARC_LENGTH_KEYS
 from vfife.ends import require_vfife_model
 
 @dataclass(frozen=True)
@@ -89,7 +89,7 @@ def shifted_dynamics(dyn, s_shift: float):
     ``min_tension_s`` and ``max_moment_s``). The dictionaries are updated in place: the
     result's file writers hold the same ones."""
     if dyn is not None and s_shift:
-        for key in ("touchdown_s", "min_tension_s", "max_moment_s"):
+        for key in ARC_LENGTH_COLUMNS:
             dyn.timeseries[key] = dyn.timeseries[key] - s_shift
         dyn.envelope["s"] = dyn.envelope["s"] - s_shift
         if dyn.states is not None:

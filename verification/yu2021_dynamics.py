@@ -40,7 +40,9 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from riser.profile import _parabolic_peak
 from riser.scene import Dynamics, Scene, TopMotion
+from riser.sections import segment_properties
 
 from .pipeline import solve_scene
 from .report import md_table, new_figure, pct, save
@@ -83,29 +85,14 @@ def dynamic_scene(scene: Scene, damping: float = DAMPING, duration: float = DURA
 
 
 def added_mass_share(scene: Scene) -> float:
-    """m / (m + m_a) of the first line type (pipe + contents over that plus the added mass)."""
-    lt = scene.line_types[scene.segments[0].line_type]
-    d = lt.hydro_diameter or lt.outer_diameter
-    bore = math.pi / 4.0 * (lt.inner_diameter or 0.0) ** 2
-    m = lt.mass_per_length + lt.contents_density * bore
-    ma = lt.added_mass * scene.water_density * math.pi / 4.0 * d * d
-    return m / (m + ma)
+    """m / (m + m_a) of the first segment (pipe + contents over that plus the added mass)."""
+    p = segment_properties(scene)[0]
+    return p.mass / (p.mass + p.added_mass)
 
 
 # ----------------------------------------------------------------------------- quantities
 def _window(t: np.ndarray, t0: float, t1: float) -> np.ndarray:
     return (t >= t0 - 1e-9) & (t <= t1 + 1e-9)
-
-
-def _vertex(s: np.ndarray, a: np.ndarray, j: int) -> float:
-    """Arc length of the maximum of the parabola through nodes j-1, j, j+1 (s[j] at an end
-    or when not concave)."""
-    if j == 0 or j == len(s) - 1:
-        return float(s[j])
-    c2, c1, _ = np.polyfit(s[j - 1:j + 2] - s[j], a[j - 1:j + 2], 2)
-    if c2 >= 0.0:
-        return float(s[j])
-    return float(np.clip(s[j] - c1 / (2.0 * c2), s[j - 1], s[j + 1]))
 
 
 def lateral_speed(states: dict, t0: float, t1: float, axis: int = 0) -> dict:
@@ -119,7 +106,7 @@ def lateral_speed(states: dict, t0: float, t1: float, axis: int = 0) -> dict:
     v = np.asarray(states["v"])[sel, :, axis]
     amp = np.max(np.abs(v), axis=0)
     j = int(np.argmax(amp))
-    peak = _vertex(s, amp, j)
+    peak = _parabolic_peak(s, amp, j)[0]       # j is the largest: a concave parabola
     return {"amplitude": amp, "peak_s": peak, "peak_from_top": float(s[-1] - peak),
             "range": float(amp[j]), "v_min": float(v[:, j].min()),
             "v_max": float(v[:, j].max()), "samples": int(sel.sum())}

@@ -26,6 +26,8 @@ import numpy as np
 TIMESERIES = ("time", "hang_off_x", "hang_off_y", "hang_off_z", "hang_off_tension",
               "touchdown_s", "touchdown_tension", "min_tension", "min_tension_s",
               "max_moment", "max_moment_s", "kinetic_energy")
+#: time-series columns that hold an arc length [m]
+ARC_LENGTH_COLUMNS = ("touchdown_s", "min_tension_s", "max_moment_s")
 #: summary keys (:meth:`Recorder.statistics`) that hold an arc length [m]
 ARC_LENGTH_KEYS = ("dynamic_min_touchdown_s", "dynamic_max_touchdown_s",
                    "dynamic_min_tension_s", "dynamic_max_moment_s", "dynamic_max_tension_s")
@@ -134,10 +136,11 @@ class Recorder:
         return {"t": np.asarray(self.states["t"]), "s": self.s.copy(),
                 "x": np.asarray(self.states["x"]), "v": np.asarray(self.states["v"])}
 
-    def statistics(self, start: float, end: float) -> dict:
-        """The window's extremes (``dynamic_*`` keys of summary.json; [N], [N m], [m], [s])."""
+    def statistics(self, end: float) -> dict:
+        """The extremes of the window from the start to ``end`` [s] (``dynamic_*`` keys of
+        summary.json; [N], [N m], [m], [s])."""
         st = dict(self.stats)
-        out = {"statistics_start": start, "statistics_end": end,
+        out = {"statistics_start": self.start, "statistics_end": end,
                "statistics_samples": self.samples}
         if "max_hang_off_tension" in st:
             st["hang_off_tension_range"] = st["max_hang_off_tension"] - st[

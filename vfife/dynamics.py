@@ -11,9 +11,11 @@ Hydrodynamics: a line moving through water always feels Morison drag on its velo
 relative to the water (the current's, zero in still water), normal and tangential, when
 its line types have drag coefficients: the drag kernel runs in every dynamic run (effect
 ``drag``, or ``current_drag`` with a current), unlike the statics, which runs it only with
-a current. Sea surface: with ``water_depth`` given, a node above y = water_depth is in
-air: its weight in air (m g, no buoyancy), no drag and no added mass (effect
-``sea_surface``; the summary warns when a node leaves the water). Damping: ``[dynamics]
+a current. Sea surface: with ``water_depth`` given, the part of the line above y =
+water_depth is in air: its weight in air (m g, no buoyancy), no drag and no added mass,
+node by node by the immersed fraction of the node's stretch of line (see
+:func:`vfife.kernels.node_pass`; effect ``sea_surface``; the summary warns when a node
+leaves the water). Damping: ``[dynamics]
 damping`` [1/s], mass-proportional (structural; default 0), on top of the drag.
 
 Top motion: ``top0 + d(t) axis`` with d(t) from :func:`top_displacement`, multiplied by
@@ -135,8 +137,10 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
     per_out = max(1, int(round(out_dt / env_dt)))
     top0 = static.X[:, -1].copy()
     axis = _axis(scene)
-    start = dyn.statistics_from
-    rec = Recorder(mesh.s, start, dyn.save_states, scene.seabed is not None)
+    rec = Recorder(mesh.s, dyn.statistics_from, dyn.save_states, scene.seabed is not None)
+    # what a blow-up message names as its likely cause
+    cause = {"critical_steps": steps, "time_step": dt,
+             "emerging": model.use_surface and not emerge}
 
     t0 = time.perf_counter()
     rec.sample(0.0, model, 0.0, True)
@@ -151,9 +155,7 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
         if st == 2 or not np.all(np.isfinite(model.X)):
             status = "blow-up"
             message = (f"dynamics diverged (blow-up) at t = {t:.4g} s (NaN/inf or speed > "
-                       "1000 m/s); likely cause: "
-                       + blow_up_cause({"critical_steps": steps, "time_step": dt,
-                                        "emerging": model.use_surface and not emerge}))
+                       "1000 m/s); likely cause: " + blow_up_cause(cause))
             break
         # energy-growth guard: kinetic energy far above the work the motion can put in
         if e0 is None:
@@ -161,9 +163,7 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
         elif ke > 1e6 * e0 and ke > 1e3 * float(np.sum(model.mass)):
             status = "blow-up"
             message = (f"dynamics diverged (blow-up, energy growth) at t = {t:.4g} s (kinetic "
-                       f"energy {ke:.3g} J); likely cause: "
-                       + blow_up_cause({"critical_steps": steps, "time_step": dt,
-                                        "emerging": model.use_surface and not emerge}))
+                       f"energy {ke:.3g} J); likely cause: " + blow_up_cause(cause))
             break
         rec.sample(t, model, ke, (j + 1) % per_out == 0)
         if report is not None and ((j + 1) % max(1, n_env // PROGRESS_REPORTS) == 0
@@ -173,7 +173,7 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
     info = {
         "timeseries": rec.timeseries(), "envelope": rec.envelope(),
         "states": rec.states_arrays(),
-        "statistics": rec.statistics(start, dyn.duration),
+        "statistics": rec.statistics(dyn.duration),
         "time_step": dt, "step_limit": limit, "critical_steps": steps,
         "steps": model.steps, "status": status, "message": message, "wall_s": wall,
         "simulated_s": model.steps * dt,

@@ -35,7 +35,7 @@ import vfife
 from riser.scene import Dynamics, Scene, TopMotion
 from vfife.dynamics import run_dynamics
 from vfife.mesh import build_mesh
-from vfife.timestep import critical_steps, nodal_stiffness
+from vfife.timestep import critical_steps
 
 #: the load of every run: heave of the hang-off (Yu et al. 2021's dynamic study)
 HEAVE_AMPLITUDE = 1.5
@@ -217,18 +217,6 @@ def surface_piercing(scene: Scene) -> dict | None:
         return None
     below = float(scene.water_depth - scene.ends.hang_off[1])
     return {"below": below} if abs(below) < HEAVE_AMPLITUDE else None
-
-
-def air_factor_limit(scene: Scene, h: float, critical: float) -> float:
-    """Largest stable step factor of the top free node in air, on the mesh of ``h``: its
-    transverse (bending + string-free) limit without the added mass, over ``critical``
-    [s], the critical step the run used (computed with the added mass). Below 1 when
-    bending sets the step: a node that leaves the water loses its added mass and its
-    limit shrinks by sqrt(m / (m + m_a))."""
-    mesh = build_mesh(scene, h)
-    k = nodal_stiffness(mesh)["transverse"][-2]
-    m = mesh.lump(mesh.mass_pl)[-2]
-    return 2.0 / math.sqrt(k / m) / critical
 
 
 def static_state(scene: Scene, h: float, static_cache: dict, static_s: dict):

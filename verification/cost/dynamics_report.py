@@ -12,7 +12,7 @@ from ..report import md_table, new_figure, save
 from .assessment import EXPECTED_ORDER, ORDER_BAND
 from .dynamics import (CSV_COLUMNS, CSV_EXTRA, DURATION, FULL_DYNAMICS, HEAVE_AMPLITUDE,
                        HEAVE_PERIOD, ORDER_FACTORS, ORDER_LENGTH, QUANTITIES, QUANTITY_LABEL,
-                       STATISTICS_START, DynRun, DynStudy, air_factor_limit)
+                       STATISTICS_START, DynRun, DynStudy)
 from .dynamics_analysis import (MATTERS, MATTERS_ABOVE, RICHARDSON_ORDERS, STEP_SHARE,
                                  recommendations)
 from .fits import NOISE_MARGIN, PRE_ASYMPTOTIC
@@ -59,8 +59,7 @@ def section(st, ds: DynStudy | None) -> list[str]:
     bad = [r for r in ds.runs if not r.converged]
     if bad:
         L += ["", "Runs that failed (kept in `dynamics.csv`, excluded from the analysis):", ""]
-        L += [f"- {r.h:g} m, factor {r.factor:g}: {r.message}{_air_note(st, ds, r)}"
-              for r in bad]
+        L += [f"- {r.h:g} m, factor {r.factor:g}: {r.message}" for r in bad]
     if ds.ref_run is None:
         return L + ["", "No dynamic run completed: nothing to analyse."]
     L += ["", "### Recommendation (dynamics)", "",
@@ -72,22 +71,6 @@ def section(st, ds: DynStudy | None) -> list[str]:
                        "both"], rows))
     L += _reference_lines(ds) + _order_lines(st, ds) + _step_lines(ds) + _cost_lines(ds)
     return L
-
-
-def _air_note(st, ds: DynStudy, r: DynRun) -> str:
-    """Why a run at the sea surface blew up, when its factor exceeds the limit of a node in
-    air (see :func:`~verification.cost.dynamics.air_factor_limit`)."""
-    if ds.surface is None or not r.time_step or "blow" not in r.message:
-        return ""
-    crit = r.time_step / r.factor
-    lim = air_factor_limit(st.fixed_scene, r.h, crit)
-    if lim >= r.factor:
-        return ""
-    return (f". But the cause here is the sea surface: the critical step ({crit:.3g} s) "
-            "counts the added mass, and a node that leaves the water has "
-            f"none, so on this mesh the top free node in air is stable only below factor "
-            f"{lim:.2f} (its bending limit without added mass), wherever the mesh is fine "
-            "enough that bending, not the axial wave, sets the step")
 
 
 def _reference_lines(ds: DynStudy) -> list[str]:
