@@ -194,6 +194,11 @@ def _require_modal(scene: Scene) -> None:
         raise UnsupportedSceneError(
             f"{scene.source}: model.seabed: 'rigid' has no linear stiffness (a touchdown "
             "point); bvp modes need the elastic seabed")
+    if scene.internal_flow is not None and scene.internal_flow.speed != 0.0:
+        raise UnsupportedSceneError(
+            f"{scene.source}: internal_flow.speed: modes do not model flowing contents (the "
+            "Coriolis force makes the modes complex); set the speed to 0 for the modes of "
+            "the line with its contents at rest")
 
 
 def _coincident(found: list[Mode]) -> list[str]:

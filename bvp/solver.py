@@ -36,6 +36,7 @@ import numpy as np
 
 from riser import validity
 from riser.errors import UnsupportedSceneError
+from riser.internal_flow import wall_tension
 from riser.result import SolveResult, Status
 from riser.scene import Scene
 from riser.sections import segment_properties
@@ -73,6 +74,8 @@ def effects_of(scene: Scene) -> list[str]:
     if scene.seabed_model is not None and (scene.ends.kind != "fixed" or scene.seabed_model ==
                                            "elastic" or scene.ends.anchor[1] == 0.0):
         eff.append("seabed")
+    if scene.internal_flow is not None:
+        eff.append("internal_flow")
     return eff
 
 
@@ -83,7 +86,7 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
     Never raises on non-convergence: the result has a :class:`~riser.result.Status` other
     than converged and a message saying why.
     Raises :class:`UnsupportedSceneError` for scenes the method cannot represent
-    (out-of-plane current).
+    (out-of-plane current, a slug in the internal flow).
     """
     t0 = time.perf_counter()
     settings = scene.bvp.override(tolerance=tolerance, max_nodes=max_nodes,
@@ -92,6 +95,10 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
         raise UnsupportedSceneError(
             f"{scene.source}: environment.current.heading_deg: {scene.current.heading_deg:g} deg "
             "is out of plane; the bvp method is planar only (use --method vfife)")
+    if scene.internal_flow is not None and scene.internal_flow.has_slug:
+        raise UnsupportedSceneError(
+            f"{scene.source}: internal_flow.slug: the bvp method models a steady uniform "
+            "flow only (a slug is a travelling load: use --method vfife)")
 
     effects = effects_of(scene)
     info = {"tolerance": settings.tolerance}
@@ -144,6 +151,10 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
     info["collocation_residual"] = float(np.max(sol.rms_residuals))
     try:
         profile, checks = build_profile(prob, sol, scene.water_depth)
+        if scene.internal_flow is not None:
+            # steady flow: no term in the shape equations (T is Fylling's effective
+            # tension), one in the wall tension (riser/internal_flow.py)
+            profile.wall_tension = wall_tension(scene, profile.s, profile.y, profile.tension)
     except BVPFailure as exc:
         return result(Status.NOT_CONVERGED, str(exc))
     info.update(checks)

@@ -3,7 +3,9 @@
 Conventions: s [m] from the bottom end (anchor or touchdown) to the hang-off; x, y, z [m]
 (x towards the hang-off, y up from the seabed, z out of plane); ``theta`` [rad] the tangent
 angle from the horizontal; ``tension`` the effective tension [N]; ``moment`` the bending
-moment magnitude [N m]; ``shear`` the shear force magnitude [N]; ``curvature`` [1/m].
+moment magnitude [N m]; ``shear`` the shear force magnitude [N]; ``curvature`` [1/m];
+``wall_tension`` [N] the pipe wall's tension, only for a scene with [internal_flow] (see
+:mod:`riser.internal_flow`; the ``wall_tension`` column of profile.csv).
 """
 
 from __future__ import annotations
@@ -23,7 +25,8 @@ PROFILE_COLUMNS = ("s", "x", "y", "z", "tension", "moment", "shear", "curvature"
 class Profile:
     """Static configuration and internal forces sampled along the line (arrays of shape (n,)).
 
-    ``tdp_s`` is the arc length of the touchdown point [m] (None for a free-hanging line).
+    ``tdp_s`` is the arc length of the touchdown point [m] (None for a free-hanging line);
+    ``wall_tension`` [N] is set for scenes with internal flow only.
     """
 
     s: np.ndarray
@@ -36,10 +39,13 @@ class Profile:
     shear: np.ndarray
     curvature: np.ndarray
     tdp_s: float | None = None
+    wall_tension: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         for name in ("s", "x", "y", "z", "theta", "tension", "moment", "shear", "curvature"):
             setattr(self, name, np.asarray(getattr(self, name), dtype=float))
+        if self.wall_tension is not None:
+            self.wall_tension = np.asarray(self.wall_tension, dtype=float)
 
     def is_finite(self) -> bool:
         return all(np.all(np.isfinite(getattr(self, n))) for n in
@@ -48,9 +54,13 @@ class Profile:
     def write_csv(self, path: str | Path) -> None:
         with open(path, "w", newline="") as fh:
             w = csv.writer(fh)
-            w.writerow(PROFILE_COLUMNS)
             cols = [self.s, self.x, self.y, self.z, self.tension, self.moment, self.shear,
                     self.curvature, np.degrees(self.theta)]
+            names = list(PROFILE_COLUMNS)
+            if self.wall_tension is not None:
+                names.append("wall_tension")
+                cols.append(self.wall_tension)
+            w.writerow(names)
             for row in zip(*cols):
                 w.writerow([f"{v:.10g}" for v in row])
 
@@ -164,6 +174,9 @@ def summarize(profile: Profile) -> dict:
         "crests": crests,
         "sags": sags,
     }
+    if profile.wall_tension is not None:
+        out["hang_off_wall_tension"] = float(profile.wall_tension[-1])
+        out["max_wall_tension"] = float(np.max(profile.wall_tension))
     return out
 
 

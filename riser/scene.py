@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 
 from .errors import SceneError
+from .internal_flow import InternalFlow
 from .settings import MAX_SEGMENT_LENGTH, BVPSettings, VFIFESettings
 
 # Plausible ranges: wide enough for any real riser, narrow enough to catch unit slips
@@ -237,6 +238,7 @@ class Scene:
     current: Current | None = None
     seabed: Seabed | None = None
     dynamics: Dynamics | None = None
+    internal_flow: InternalFlow | None = None
     bvp: BVPSettings = field(default_factory=BVPSettings)
     vfife: VFIFESettings = field(default_factory=VFIFESettings)
     model: dict = field(default_factory=dict)

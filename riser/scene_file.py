@@ -13,6 +13,7 @@ import tomllib
 from pathlib import Path
 
 from .errors import SceneError
+from .internal_flow import check_internal_flow, read_internal_flow
 from .scene import (LIMITS, Current, Dynamics, Ends, LineType, Scene, Seabed, Segment,
                     TopMotion, require_axial_stiffness)
 from .settings import BVPSettings, VFIFESettings
@@ -108,6 +109,8 @@ def scene_from_dict(data: dict, source: str = "<scene>") -> Scene:
 
     dyn_t = root.table("dynamics")
     dynamics = _read_dynamics(dyn_t) if dyn_t is not None else None
+    flow_t = root.table("internal_flow")
+    flow = read_internal_flow(flow_t) if flow_t is not None else None
 
     model_t = root.table("model")
     model = _read_model(model_t) if model_t is not None else {}
@@ -118,7 +121,10 @@ def scene_from_dict(data: dict, source: str = "<scene>") -> Scene:
     scene = Scene(name=name, title=title, provenance=provenance, gravity=gravity,
                   water_density=water_density, water_depth=water_depth, current=current,
                   seabed=seabed, line_types=line_types, segments=segments, ends=ends,
-                  dynamics=dynamics, bvp=bvp, vfife=vfife, model=model, source=source)
+                  dynamics=dynamics, internal_flow=flow, bvp=bvp, vfife=vfife, model=model,
+                  source=source)
+    if flow is not None:
+        check_internal_flow(scene)
     _check_model(scene)
     _check_geometry(scene)
     return scene

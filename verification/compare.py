@@ -113,6 +113,8 @@ def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
         add(name, None, None, diff=float(d[i]), at_s=float(grid[i]))
 
     add("hang_off_tension", sb["hang_off_tension"], sv["hang_off_tension"])
+    if "hang_off_wall_tension" in sb and "hang_off_wall_tension" in sv:
+        add("hang_off_wall_tension", sb["hang_off_wall_tension"], sv["hang_off_wall_tension"])
     add("hang_off_angle_deg", sb["hang_off_angle_deg"], sv["hang_off_angle_deg"])
     if sb["tdp_x"] is not None:
         add("tdp_x", sb["tdp_x"], sv["tdp_x"])

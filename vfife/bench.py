@@ -11,7 +11,10 @@ thread, compilation excluded:
 - ``spatial``: 3D kernel on the same planar scene without current;
 - ``spatial_drag``: 3D kernel with an out-of-plane current (heading 90 deg, 1 m/s);
 - ``planar_drag_surface``: as ``planar_drag`` with the sea surface on (10 m above the
-  hang-off, so every node is checked and stays wet: the cost of the check itself).
+  hang-off, so every node is checked and stays wet: the cost of the check itself);
+- ``planar_drag_flow`` and ``planar_drag_slug``: as ``planar_drag`` with contents (800
+  kg/m3) flowing at 2.5 m/s, steady or as a slug (eta 0.25, 80 m): the flow pass of a
+  dynamic run (vfife/flow.py) against the same scene without [internal_flow].
 The dynamic run has the still-water drag on, as every dynamic run in water.
 """
 
@@ -28,6 +31,9 @@ from pathlib import Path
 
 import numpy as np
 
+import dataclasses
+
+from riser.internal_flow import InternalFlow
 from riser.scene import Current, Dynamics, Scene, TopMotion
 
 from .model import Model
@@ -53,7 +59,7 @@ def _cold_compile_s() -> float:
 def _kernel_ns(scene, static: Model, planar: bool, nsteps: int = 4000,
                surface: bool = False) -> float:
     m = Model(scene, static.mesh, rot_scale=1.0, added_mass=True, planar=planar,
-              surface=surface)
+              surface=surface, flow="dynamic" if scene.internal_flow is not None else None)
     m.X[:] = static.X
     m.D[:] = static.D
     steps = critical_steps(static.mesh, rot_scale=1.0, tension=1e6, added_mass=True)
@@ -90,6 +96,13 @@ def run_bench(out_dir, scene: Scene, *, duration: float = 30.0) -> dict:
             planar_cur.replace(water_depth=float(static_model.X[1, -1]) + 10.0),
             static_model, True, surface=True),
     }
+    full = scene.replace(line_types={k: dataclasses.replace(lt, contents_density=800.0)
+                                     for k, lt in scene.line_types.items()})
+    ns["planar_drag_flow"] = _kernel_ns(full.replace(
+        current=planar_cur.current, internal_flow=InternalFlow(speed=2.5)), static_model, True)
+    ns["planar_drag_slug"] = _kernel_ns(full.replace(
+        current=planar_cur.current, internal_flow=InternalFlow(
+            speed=2.5, density_amplitude=0.25, slug_length=80.0)), static_model, True)
     dyn_scene = scene.replace(dynamics=Dynamics(duration=duration, output_interval=1.0,
                                                top_motion=TopMotion(axis="y", amplitude=1.5,
                                                                     period=10.0,
@@ -102,7 +115,9 @@ def run_bench(out_dir, scene: Scene, *, duration: float = 30.0) -> dict:
                                        "spatial_drag": ns["spatial_drag"],
                                        "planar_drag": ns["planar_drag"],
                                        "spatial": ns["spatial"],
-                                       "planar_drag_surface": ns["planar_drag_surface"]},
+                                       "planar_drag_surface": ns["planar_drag_surface"],
+                                       "planar_drag_flow": ns["planar_drag_flow"],
+                                       "planar_drag_slug": ns["planar_drag_slug"]},
         "compile_s": cold,
         "cache_load_s": cache_load,
         "static_wall_s": stat.wall_time_s,
@@ -121,6 +136,8 @@ def run_bench(out_dir, scene: Scene, *, duration: float = 30.0) -> dict:
             "drag_on_over_off_spatial": ns["spatial_drag"] / ns["spatial"],
             "spatial_over_planar": ns["spatial"] / ns["planar"],
             "surface_on_over_off_planar_drag": ns["planar_drag_surface"] / ns["planar_drag"],
+            "flow_on_over_off_planar_drag": ns["planar_drag_flow"] / ns["planar_drag"],
+            "slug_on_over_off_planar_drag": ns["planar_drag_slug"] / ns["planar_drag"],
         },
         "targets": {"kernel_ns_planar": 6.0, "kernel_ns_spatial_drag": 15.0,
                     "static_wall_s": 2.0, "realtime_factor_1m": 10.0},
@@ -141,6 +158,8 @@ def format_table(bench: dict) -> str:
         ("kernel planar + drag", k["planar_drag"], "", None),
         ("kernel 3D, no drag", k["spatial"], "", None),
         ("kernel planar + drag + sea surface", k["planar_drag_surface"], "", None),
+        ("kernel planar + drag + internal flow", k["planar_drag_flow"], "", None),
+        ("kernel planar + drag + slug flow", k["planar_drag_slug"], "", None),
         ("statics Wang 1 m [s]", bench["static_wall_s"], f"< {t['static_wall_s']:g}",
          bench["static_wall_s"] < t["static_wall_s"]),
         ("dynamics 1 m [x real time]", bench["realtime_factor_1m"],
@@ -154,5 +173,7 @@ def format_table(bench: dict) -> str:
     e = bench["effect_costs"]
     lines.append(f"drag on/off: planar x{e['drag_on_over_off_planar']:.2f}, 3D "
                  f"x{e['drag_on_over_off_spatial']:.2f}; 3D/planar x{e['spatial_over_planar']:.2f}; "
-                 f"sea surface on/off (planar + drag) x{e['surface_on_over_off_planar_drag']:.2f}")
+                 f"sea surface on/off (planar + drag) x{e['surface_on_over_off_planar_drag']:.2f}; "
+                 f"internal flow on/off (planar + drag) x{e['flow_on_over_off_planar_drag']:.2f}, "
+                 f"slug x{e['slug_on_over_off_planar_drag']:.2f}")
     return "\n".join(lines)

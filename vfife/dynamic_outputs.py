@@ -16,7 +16,8 @@ Time series (one row per output time; SI units, s from the bottom end):
     kinetic_energy [J] (translations and rotations).
 Envelopes (one row per node): s [m], tension_min, tension_max [N], moment_max [N m],
 curvature_max [1/m], y_min, y_max [m] (height extremes: seabed and surface clearance).
-States (``[dynamics] save_states``): t (k,), s (n,), x (k, n, 3) [m], v (k, n, 3) [m/s].
+States (``[dynamics] save_states``): t (k,), s (n,), x (k, n, 3) [m], v (k, n, 3) [m/s],
+tension (k, n) [N] (effective) and moment (k, n) [N m] at the nodes.
 """
 
 from __future__ import annotations
@@ -70,7 +71,7 @@ class Recorder:
         self.env = {"tension_min": np.full(n, np.inf), "tension_max": np.full(n, -np.inf),
                     "moment_max": np.full(n, -np.inf), "curvature_max": np.full(n, -np.inf),
                     "y_min": np.full(n, np.inf), "y_max": np.full(n, -np.inf)}
-        self.states = {"t": [], "x": [], "v": []}
+        self.states = {"t": [], "x": [], "v": [], "tension": [], "moment": []}
         self.stats: dict = {}
         self.samples = 0
 
@@ -98,6 +99,8 @@ class Recorder:
                 self.states["t"].append(t)
                 self.states["x"].append(model.positions())
                 self.states["v"].append(model.V.T.copy())
+                self.states["tension"].append(T.copy())
+                self.states["moment"].append(M.copy())
 
     def _window(self, row: dict, T, M, K, y) -> None:
         e = self.env
@@ -134,7 +137,7 @@ class Recorder:
         if not self.save_states:
             return None
         return {"t": np.asarray(self.states["t"]), "s": self.s.copy(),
-                "x": np.asarray(self.states["x"]), "v": np.asarray(self.states["v"])}
+                **{k: np.asarray(self.states[k]) for k in ("x", "v", "tension", "moment")}}
 
     def statistics(self, end: float) -> dict:
         """The extremes of the window from the start to ``end`` [s] (``dynamic_*`` keys of

@@ -36,6 +36,7 @@ import numpy as np
 from riser.callbacks import with_fraction
 
 from .dynamic_outputs import Recorder
+from .flow import lightest_mass_factor
 from .model import Model, max_speed_hint
 from .timestep import choose_step, critical_steps
 
@@ -106,7 +107,7 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
     added = any(scene.line_types[s.line_type].added_mass > 0.0 for s in scene.segments)
     rot_scale = vf.rotational_inertia_scale_dynamics
     model = Model(scene, mesh, rot_scale=rot_scale, added_mass=added, planar=planar,
-                  drag=True, surface=True)
+                  drag=True, surface=True, flow="dynamic")
     model.X[:] = static.X
     model.D[:] = static.D
     tm = dyn.top_motion
@@ -122,7 +123,8 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
                            added_mass=added and not emerge,
                            seabed_stiffness=kseabed, seabed_damping=model.cseabed,
                            drag_speed=2.0 * max_speed_hint(scene)
-                           if model.use_drag else 0.0)
+                           if model.use_drag else 0.0,
+                           mass_factor=lightest_mass_factor(scene))
     dt, limit = choose_step(steps, vf.time_step_safety)
     if vf.time_step is not None:          # user-fixed step (may exceed the critical)
         dt, limit = float(vf.time_step), "user ([vfife] time_step)"

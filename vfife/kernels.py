@@ -221,6 +221,141 @@ def dashpot_pass_2d(x, y, vx, vy, eta, q0, q1):
         q1[e] = nd * ey
 
 
+# ============================================================================ internal flow
+# Contents flowing at speed U along the pipe (see riser/internal_flow.py and
+# vfife/flow.py for the formulation): the contents mass per length mu_i at the nodes (a
+# travelling slug: mu_0 (1 + eta cos(k s - omega t + psi)) = mu_0 (1 + eta (C cos(omega t)
+# + S sin(omega t))) with C, S = cos, sin(k s + psi) precomputed, so no trigonometry per
+# node), and the nodal forces it adds to the fixed-ends model whose element force is the
+# effective tension T_e (Fylling: it already holds the uniform part of the centrifugal
+# force mu U^2 kappa): the axial force of the density gradient U^2 (d mu / ds) tau and
+# the Coriolis force -2 mu U d tau / dt, discretised as
+#     f_i = 0.5 U^2 (mu_i+1 - mu_i-1) d_i - mu_i U (v_i+1 - v_i-1)
+# (central differences over the tributary length; the Coriolis form is skew-symmetric in
+# the velocities for uniform mu, so it does no work, as the continuum's does not). A
+# separate pass (as the drag) reads the velocities before the node pass updates them.
+@njit(**_JIT)
+def flow_pass(t, dynamic, fpar, fnodes, trib, madd, mass, im, imd, iair, wair, wload,
+              x, y, z, vx, vy, vz, dx, dy, dz, q0, q1, q2, p0, p1, p2):
+    """Internal-flow pass (3D) at time t [s].
+
+    fpar : (U [m/s], mu_0 [kg/m], eta [-], omega [rad/s], g [m/s2]).
+    fnodes : (5, n) rows C, S (cos and sin of k s + psi), the nodes' pipe mass [kg] (no
+        contents), their weight with the mean contents [N] and scratch for mu_i [kg/m].
+    dynamic : update the nodal masses (mass, im = 1/(m + ma), imd = 1/m - im, iair =
+        1/m), the weights in water (wload) and in air (wair) from mu_i, and add the Coriolis
+        force; otherwise (statics, a frozen slug) only the gradient force.
+    q0..q2 (n,) out: the flow force on each node [N] (ends: 0).
+    p0..p2 (n,) in/out: the Coriolis force of the previous step [N]. The Coriolis force
+    from the lagged velocities v^(n-1/2) alone is a forward-Euler rotation, which grows
+    a mode by (1 + theta^2)^(1/2) per step (theta = 2 mu U dt / ((m + mu + m_a) l): a taut
+    pipe at 20 m/s blew up within 130 s); it is extrapolated to the step's time t_n as
+    1.5 f(v^(n-1/2)) - 0.5 f(v^(n-3/2)) (Adams-Bashforth 2, second order, growth ~
+    theta^4 / 4 per step).
+    """
+    n = trib.shape[0]
+    U = fpar[0]
+    mu0 = fpar[1]
+    eta = fpar[2]
+    ct = math.cos(fpar[3] * t)
+    st = math.sin(fpar[3] * t)
+    g = fpar[4]
+    C = fnodes[0]
+    S = fnodes[1]
+    mu = fnodes[4]
+    slug = eta != 0.0                   # steady flow: mu = mu_0, masses and weights fixed
+    if slug:
+        for i in range(n):
+            mu[i] = mu0 * (1.0 + eta * (C[i] * ct + S[i] * st))
+    if dynamic and slug:
+        mp = fnodes[2]
+        w0 = fnodes[3]
+        for i in range(n):
+            m = mp[i] + mu[i] * trib[i]
+            mass[i] = m
+            im[i] = 1.0 / (m + madd[i])
+            imd[i] = 1.0 / m - im[i]
+            iair[i] = 1.0 / m
+            wair[i] = g * m
+            wload[i] = w0[i] + (mu[i] - mu0) * trib[i] * g
+    cu = U if dynamic else 0.0
+    h = 0.5 * U * U
+    q0[0] = q1[0] = q2[0] = 0.0
+    q0[n - 1] = q1[n - 1] = q2[n - 1] = 0.0
+    one = np.uint64(1)
+    for i in range(one, np.uint64(n - 1)):      # unsigned: see _NOWRAP
+        gr = h * (mu[i + one] - mu[i - one])
+        c = cu * mu[i]
+        cx = -c * (vx[i + one] - vx[i - one])
+        cy = -c * (vy[i + one] - vy[i - one])
+        cz = -c * (vz[i + one] - vz[i - one])
+        ca = cx * dx[i] + cy * dy[i] + cz * dz[i]
+        cx -= ca * dx[i]
+        cy -= ca * dy[i]
+        cz -= ca * dz[i]
+        tx = x[i + one] - x[i - one]
+        ty = y[i + one] - y[i - one]
+        tz = z[i + one] - z[i - one]
+        gr /= math.sqrt(tx * tx + ty * ty + tz * tz)
+        q0[i] = gr * tx + 1.5 * cx - 0.5 * p0[i]
+        q1[i] = gr * ty + 1.5 * cy - 0.5 * p1[i]
+        q2[i] = gr * tz + 1.5 * cz - 0.5 * p2[i]
+        p0[i] = cx
+        p1[i] = cy
+        p2[i] = cz
+
+
+@njit(**_JIT)
+def flow_pass_2d(t, dynamic, fpar, fnodes, trib, madd, mass, im, imd, iair, wair, wload,
+                 x, y, vx, vy, dx, dy, q0, q1, p0, p1):
+    """Planar version of :func:`flow_pass`."""
+    n = trib.shape[0]
+    U = fpar[0]
+    mu0 = fpar[1]
+    eta = fpar[2]
+    ct = math.cos(fpar[3] * t)
+    st = math.sin(fpar[3] * t)
+    g = fpar[4]
+    C = fnodes[0]
+    S = fnodes[1]
+    mu = fnodes[4]
+    slug = eta != 0.0                   # steady flow: mu = mu_0, masses and weights fixed
+    if slug:
+        for i in range(n):
+            mu[i] = mu0 * (1.0 + eta * (C[i] * ct + S[i] * st))
+    if dynamic and slug:
+        mp = fnodes[2]
+        w0 = fnodes[3]
+        for i in range(n):
+            m = mp[i] + mu[i] * trib[i]
+            mass[i] = m
+            im[i] = 1.0 / (m + madd[i])
+            imd[i] = 1.0 / m - im[i]
+            iair[i] = 1.0 / m
+            wair[i] = g * m
+            wload[i] = w0[i] + (mu[i] - mu0) * trib[i] * g
+    cu = U if dynamic else 0.0
+    h = 0.5 * U * U
+    q0[0] = q1[0] = 0.0
+    q0[n - 1] = q1[n - 1] = 0.0
+    one = np.uint64(1)
+    for i in range(one, np.uint64(n - 1)):      # unsigned: see _NOWRAP
+        gr = h * (mu[i + one] - mu[i - one])
+        c = cu * mu[i]
+        cx = -c * (vx[i + one] - vx[i - one])
+        cy = -c * (vy[i + one] - vy[i - one])
+        ca = cx * dx[i] + cy * dy[i]
+        cx -= ca * dx[i]
+        cy -= ca * dy[i]
+        tx = x[i + one] - x[i - one]
+        ty = y[i + one] - y[i - one]
+        gr /= math.sqrt(tx * tx + ty * ty)
+        q0[i] = gr * tx + 1.5 * cx - 0.5 * p0[i]
+        q1[i] = gr * ty + 1.5 * cy - 0.5 * p1[i]
+        p0[i] = cx
+        p1[i] = cy
+
+
 # ============================================================================ node pass
 # Pass 2 in one loop over the nodes: gather the element forces and moments, add weight,
 # seabed contact and the current drag, and update translation and rotation (the nodal
@@ -295,7 +430,7 @@ def _rotate_3d(i, dx, dy, dz, wx, wy, wz, px, py, pz, jinv, jrot, dt, c1, c2):
 def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a2,
               b0, b1, b2, wload, mass, im, imd, jinv, jrot, kst, cseabed, mu, vfric,
               U, cdn, cdt, cdir, use_drag, qd0, qd1, qd2, use_dashpot, wair, iair, madd,
-              sband, dband, ysurf, use_surface, dt, c, stats, R, RM):
+              sband, dband, ysurf, use_surface, ql0, ql1, ql2, use_flow, dt, c, stats, R, RM):
     """Fused node pass (3D): nodal force = f[i] - f[i-1] - weight (+ seabed, + drag),
     moment = a[i] + b[i-1]; central-difference update of the translations of nodes
     1..n-2 (added mass normal to the director: im = 1/(m + ma), imd = 1/m - im) and of
@@ -317,6 +452,7 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
     crosses the surface (a node-wise on/off switch made the results depend on mesh and
     step). Weight wair + q (wload - wair) (wair (n,) the weight in air [N]), mass m + q
     m_a normal to the axis (madd (n,) [kg]; iair = 1/m), drag x q.
+    ql0..ql2 (n,): internal-flow forces of :func:`flow_pass` (read only when use_flow).
     Returns (max squared free-node force [N2], max squared moment [N2 m2], 2 x KE [J]);
     the two maxima are 0 unless ``stats``."""
     n = x.shape[0]
@@ -378,6 +514,10 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
             gx += cn * rnx + ft * ex
             gy += cn * rny + ft * ey
             gz += cn * rnz + ft * ez
+        if use_flow:
+            gx += ql0[i]
+            gy += ql1[i]
+            gz += ql2[i]
         R[i] = gx * gx + gy * gy + gz * gz
         if use_dashpot:                   # after the residual: not an out-of-balance force
             gx += qd0[i] - qd0[i - one]
@@ -408,10 +548,11 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
 @njit(**_JIT)
 def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, jinv, jrot,
                  kst, cseabed, mu, vfric, U, cdn, cdt, cdir, use_drag, qd0, qd1,
-                 use_dashpot, wair, iair, madd, sband, dband, ysurf, use_surface, dt, c,
-                 stats, R, RM):
+                 use_dashpot, wair, iair, madd, sband, dband, ysurf, use_surface, ql0, ql1,
+                 use_flow, dt, c, stats, R, RM):
     """Planar version of :func:`node_pass` (w (n,) rotation rate about z, a0, b0 (ne,)
-    moments about z, cdir (2,) in plane, qd0, qd1 (ne,) dashpot forces)."""
+    moments about z, cdir (2,) in plane, qd0, qd1 (ne,) dashpot forces, ql0, ql1 (n,)
+    flow forces)."""
     n = x.shape[0]
     c1 = 1.0 - 0.5 * c * dt
     c2 = 1.0 / (1.0 + 0.5 * c * dt)
@@ -469,6 +610,9 @@ def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, 
             ft = wet * cdt[i] * abs(rt) * rt
             gx += cn * rnx + ft * ex
             gy += cn * rny + ft * ey
+        if use_flow:
+            gx += ql0[i]
+            gy += ql1[i]
         R[i] = gx * gx + gy * gy
         if use_dashpot:                   # after the residual: not an out-of-balance force
             gx += qd0[i] - qd0[i - one]
@@ -502,8 +646,9 @@ def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, 
 @njit(**_JIT)
 def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd, jinv,
         jrot, wload, kst, cdn, cdt, heights, speeds, slopes, cdir, use_drag, cseabed, mu,
-        vfric, eta, Q, use_dashpot, wair, iair, madd, sband, dband, ysurf, use_surface, dt, c,
-        top0, top_axis, top_disp, tol_f, tol_m, vmax):
+        vfric, eta, Q, use_dashpot, wair, iair, madd, sband, dband, ysurf, use_surface,
+        use_flow, flow_dynamic, t0, fpar, fnodes, FL, dt, c, top0, top_axis, top_disp, tol_f,
+        tol_m, vmax):
     """Advance up to ``nsteps`` explicit steps.
 
     jinv, jrot : (n,) inverse rotational inertia [1/(kg m2)] (0 at a clamped end) and the
@@ -517,6 +662,9 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
     wair, iair, madd, sband, dband : (n,) weight in air [N], inverse mass [1/kg], added
         mass [kg], tributary length and outer diameter [m] of the nodes, for the sea surface
         y = ysurf [m], used only when use_surface (dynamics; see :func:`node_pass`).
+    use_flow, flow_dynamic, t0, fpar, fnodes, FL : internal flow (see :func:`flow_pass`),
+        run only when use_flow: t0 [s] the time at the start of this call, FL (6, n)
+        the flow forces (rows 0-2) and the previous step's Coriolis forces (rows 3-5).
     planar : use the planar kernels on rows 0-1 of X, V, D (z untouched) and W[2] as the
         rotation rate; F (2, ne), MA, MB (1, ne), cdir (2,) then.
     top0 (3,) hang-off position at zero displacement; top_axis (3,) unit axis; top_disp
@@ -543,6 +691,16 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
         stats = check or (k & 255) == 0 or k == nsteps - 1
         if drag_profile:
             current_pass(X[1], heights, speeds, slopes, U)
+        if use_flow:
+            tk = t0 + k * dt
+            if planar:
+                flow_pass_2d(tk, flow_dynamic, fpar, fnodes, sband, madd, mass, im, imd, iair,
+                             wair, wload, X[0], X[1], V[0], V[1], D[0], D[1], FL[0], FL[1],
+                             FL[3], FL[4])
+            else:
+                flow_pass(tk, flow_dynamic, fpar, fnodes, sband, madd, mass, im, imd, iair,
+                          wair, wload, X[0], X[1], X[2], V[0], V[1], V[2], D[0], D[1],
+                          D[2], FL[0], FL[1], FL[2], FL[3], FL[4], FL[5])
         if planar:
             element_pass_2d(X[0], X[1], D[0], D[1], l0, kax, kb, F[0], F[1], MA[0], MB[0])
             if use_dashpot:
@@ -551,7 +709,8 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
                                       MA[0], MB[0], wload, mass, im, imd, jinv, jrot, kst,
                                       cseabed, mu, vfric, U, cdn, cdt, cdir, use_drag,
                                       Q[0], Q[1], use_dashpot, wair, iair, madd, sband,
-                                      dband, ysurf, use_surface, dt, c, stats, R[0], R[1])
+                                      dband, ysurf, use_surface, FL[0], FL[1], use_flow,
+                                      dt, c, stats, R[0], R[1])
         else:
             element_pass(X[0], X[1], X[2], D[0], D[1], D[2], l0, kax, kb, F[0], F[1], F[2],
                          MA[0], MA[1], MA[2], MB[0], MB[1], MB[2])
@@ -562,7 +721,8 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
                                    MB[0], MB[1], MB[2], wload, mass, im, imd, jinv, jrot,
                                    kst, cseabed, mu, vfric, U, cdn, cdt, cdir, use_drag,
                                    Q[0], Q[1], Q[2], use_dashpot, wair, iair, madd, sband,
-                                   dband, ysurf, use_surface, dt, c, stats, R[0], R[1])
+                                   dband, ysurf, use_surface, FL[0], FL[1], FL[2],
+                                   use_flow, dt, c, stats, R[0], R[1])
         ke = 0.5 * k1
         d1 = top_disp[k + 1]
         vt = (d1 - top_disp[k]) / dt

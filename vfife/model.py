@@ -12,9 +12,11 @@ import math
 
 import numpy as np
 
+from riser.internal_flow import contents_mass_per_length
 from riser.scene import Scene
 
 from . import kernels
+from .flow import flow_arrays
 from .mesh import Mesh
 
 #: largest contact damping ratio used by the explicit step (scene values above are clamped)
@@ -38,10 +40,15 @@ class Model:
     surface : model the sea surface at ``water_depth`` (dynamics; needs a water depth):
         the part of a node's segment above it carries its weight in air, with no
         buoyancy, drag or added mass (see :func:`vfife.kernels.node_pass`).
+    flow : the scene's [internal_flow] (see :mod:`vfife.flow`): 'dynamic' runs the flow
+        pass every step (masses, weights, gradient and Coriolis forces at the model's
+        ``time`` [s]); 'static' freezes a slug's weight at t = 0 and runs no flow kernel;
+        None ignores the flow.
     """
 
     def __init__(self, scene: Scene, mesh: Mesh, *, rot_scale: float, added_mass: bool,
-                 planar: bool, drag: bool | None = None, surface: bool = False):
+                 planar: bool, drag: bool | None = None, surface: bool = False,
+                 flow: str | None = None):
         self.scene = scene
         self.mesh = mesh
         self.planar = planar
@@ -109,6 +116,23 @@ class Model:
         self.use_dashpot = False
         self.Q = np.zeros((k, ne))
         self.steps = 0
+        self.time = 0.0                 # [s] the flow's clock (dynamics)
+        self._set_flow(flow)
+
+    def _set_flow(self, mode: str | None) -> None:
+        """Arrays of the internal-flow pass (see :mod:`vfife.flow`)."""
+        fl = self.scene.internal_flow
+        self.FL = np.zeros((6, self.mesh.n))
+        self.flow_mode = mode if fl is not None else None
+        self.flow_dynamic = fl is not None and mode == "dynamic"
+        self.use_flow = self.flow_dynamic
+        self.has_slug = fl is not None and fl.has_slug and mode is not None
+        self.fpar, self.fnodes = (flow_arrays(self.scene, self.mesh, self.mass, self.wload)
+                                  if self.use_flow else (np.zeros(5), np.zeros((5, 1))))
+        if self.has_slug and mode == "static":     # the slug's weight frozen at t = 0
+            mu0 = contents_mass_per_length(self.scene)
+            mu = mu0 * fl.density_factor(self.mesh.s, 0.0)
+            self.wload = self.wload + (mu - mu0) * self.trib * self.scene.gravity
 
     def set_axial_dashpot(self, eta) -> None:
         """Axial dashpot coefficients [N s/m] per element (scalar or (ne,)); all zero turns
@@ -149,6 +173,8 @@ class Model:
             out.append("current_drag" if self.has_current else "drag")
         if self.use_surface:
             out.append("sea_surface")
+        if self.flow_mode is not None:       # a steady flow in statics: no force (Fylling)
+            out.append("slug_flow" if self.has_slug else "internal_flow")
         if np.any(self.madd > 0.0):
             out.append("added_mass")
         return out
@@ -188,9 +214,11 @@ class Model:
                           self.cseabed, self.mu, self.vfric,
                           self.eta, self.Q, self.use_dashpot, self.wair, self.iair,
                           self.madd, self.trib, self.dnode, self.ysurf, self.use_surface,
-                          dt, c, top0, axis, top_disp,
-                          tol_f, tol_m, vmax)
+                          self.use_flow, self.flow_dynamic, self.time, self.fpar, self.fnodes,
+                          self.FL, dt, c, top0, axis, top_disp, tol_f, tol_m, vmax)
         self.steps += int(out[0])
+        if self.flow_dynamic:
+            self.time += int(out[0]) * dt
         return out
 
     # -------------------------------------------------------------- results

@@ -101,12 +101,17 @@ def solve_modes(scene, count: int = 10, *, static=None, progress=None,
     static : a converged :func:`vfife.solve` result of ``scene`` (solved here when None;
         its ``solver_state`` is the static Model). rot_scale : factor on the physical
         rotational inertia (1; the dynamics use ``[vfife] rotational_inertia_scale_dynamics``).
-    Raises UnsupportedSceneError for a scene without fixed ends or a non-planar static
-    state. A static solve that fails gives a result with its status and no modes.
+    Raises UnsupportedSceneError for a scene without fixed ends, with flowing contents
+    or a non-planar static state. A static solve that fails gives a result with its status and no modes.
     Shapes: the nodal translations (n, 3), ``s`` the mesh's unstretched arc length.
     """
     if count < 1:
         raise ValueError(f"count must be >= 1, got {count}")
+    if scene.internal_flow is not None and scene.internal_flow.speed != 0.0:
+        raise UnsupportedSceneError(
+            f"{scene.source}: internal_flow.speed: modes do not model flowing contents (the "
+            "Coriolis force makes the modes complex); set the speed to 0 for the modes of "
+            "the line with its contents at rest")
     report = with_fraction(progress)
     res, static_s = static_state(scene, static, progress)
     if not res.converged:

@@ -9,6 +9,7 @@ import numpy as np
 
 from riser import validity
 from riser.errors import UnsupportedSceneError
+from riser.internal_flow import wall_tension
 from riser.profile import Profile
 from riser.result import DynamicsResult, SolveResult, Status
 from riser.scene import Scene
@@ -96,10 +97,13 @@ def make_profile(model: Model, scene: Scene) -> Profile:
     # angle from the horizontal, signed like the planar convention: a tangent pointing
     # back (towards -x) past the vertical gives an angle above 90 deg
     theta = np.arctan2(D[:, 1], np.copysign(np.hypot(D[:, 0], D[:, 2]), D[:, 0]))
+    wall = (wall_tension(scene, model.mesh.s, X[:, 1], r["tension"])
+            if scene.internal_flow is not None else None)
     return Profile(s=model.mesh.s.copy(), x=X[:, 0], y=X[:, 1], z=X[:, 2], theta=theta,
                    tension=r["tension"], moment=r["moment"], shear=r["shear"],
                    curvature=r["curvature"],
-                   tdp_s=touchdown_s(model.mesh.s, X[:, 1], scene.seabed is not None))
+                   tdp_s=touchdown_s(model.mesh.s, X[:, 1], scene.seabed is not None),
+                   wall_tension=wall)
 
 
 def _csv_writer(columns: dict):
@@ -215,6 +219,7 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
     files = {"timeseries.csv": _csv_writer(ts), "envelope.csv": _csv_writer(env)}
     if states is not None:
         files["states.npz"] = _npz_writer(states)
-        info["states_file"] = "states.npz (t (k,), s (n,), x (k, n, 3), v (k, n, 3))"
+        info["states_file"] = ("states.npz (t (k,), s (n,), x (k, n, 3), v (k, n, 3), "
+                               "tension (k, n), moment (k, n))")
     return result(Status.CONVERGED, message, profile, solver_state=model,
                   dynamics=DynamicsResult(ts, env, states), extra_files=files)

@@ -249,7 +249,8 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
         if scene.seabed is not None:
             free = ~((X[:-1, 1] <= 1e-6) & (X[1:, 1] <= 1e-6))
         X = length_consistent(X, mesh.l0 * (1.0 + Ne / mesh.EA), free)
-        new = Model(scene, mesh, rot_scale=rot_scale, added_mass=False, planar=planar)
+        new = Model(scene, mesh, rot_scale=rot_scale, added_mass=False, planar=planar,
+                    flow="static")
         new.set_state(X, D)
         new.set_axial_dashpot(axial_dashpot(mesh, zeta_a))
         # critical steps of the mesh actually relaxed, with its contact spring and damping

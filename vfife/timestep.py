@@ -61,7 +61,7 @@ def damped_factor(zeta):
 def critical_steps(mesh: Mesh, *, rot_scale: float, tension: float = 0.0,
                    added_mass: bool = False, seabed_stiffness: float = 0.0,
                    seabed_damping=0.0, drag_speed: float = 0.0,
-                   axial_damping=0.0) -> dict:
+                   axial_damping=0.0, mass_factor: float = 1.0) -> dict:
     """Critical time steps [s] of ``mesh`` (dict: axial, rotation, bending, seabed, drag).
 
     seabed_damping : nodal contact damping [N s/m] ((n,) or scalar), as used by the
@@ -69,9 +69,11 @@ def critical_steps(mesh: Mesh, *, rot_scale: float, tension: float = 0.0,
     with the contact spring and this damping on this mesh.
     axial_damping : axial dashpot coefficients eta [N s/m] per element ((ne,) or scalar,
     statics only); 'axial' then includes its explicit damping.
+    mass_factor : factor on the pipe + contents mass (a slug lightens the nodes it passes,
+    see :func:`vfife.flow.lightest_mass_factor`).
     """
-    m_pl = mesh.mass_pl + (mesh.added_pl if added_mass else 0.0)
-    m = mesh.lump(mesh.mass_pl)            # axial direction: no added mass
+    m_pl = mass_factor * mesh.mass_pl + (mesh.added_pl if added_mass else 0.0)
+    m = mesh.lump(mass_factor * mesh.mass_pl)   # axial direction: no added mass
     mt = mesh.lump(m_pl)                   # transverse
     J = rot_scale * mesh.lump(mesh.rot_pl)
     k = nodal_stiffness(mesh, tension)
