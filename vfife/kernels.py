@@ -230,22 +230,54 @@ def dashpot_pass_2d(x, y, vx, vy, eta, q0, q1):
 # effective tension T_e (Fylling: it already holds the uniform part of the centrifugal
 # force mu U^2 kappa): the axial force of the density gradient U^2 (d mu / ds) tau and
 # the Coriolis force -2 mu U d tau / dt, discretised as
-#     f_i = 0.5 U^2 (mu_i+1 - mu_i-1) d_i - mu_i U (v_i+1 - v_i-1)
-# (central differences over the tributary length; the Coriolis form is skew-symmetric in
-# the velocities for uniform mu, so it does no work, as the continuum's does not). A
+#     f_i = 0.5 U^2 (mu_i+1 - mu_i-1) t_i - P_i mu_i U (v_i+1 - v_i-1)
+# (central differences over the tributary length; t_i the unit chord from node i-1 to
+# i+1, P_i the projection normal to the director; for a uniform mu the Coriolis form is
+# skew-symmetric in the velocities, so it does no work, as the continuum's does not). A
 # separate pass (as the drag) reads the velocities before the node pass updates them.
+@njit(inline="always", **_JIT)
+def _slug_update(t, fpar, fnodes, trib, madd, mass, im, imd, iair, wair, wload):
+    """The slug's contents mu_i [kg/m] at time t [s] into fnodes[4], and the nodal masses
+    (mass, im = 1/(m + ma), imd = 1/m - im, iair = 1/m) and weights in water (wload) and
+    in air (wair) that follow from it; nothing for a steady flow (eta = 0: mu = mu_0)."""
+    eta = fpar[2]
+    if eta == 0.0:
+        return
+    n = trib.shape[0]
+    mu0 = fpar[1]
+    ct = math.cos(fpar[3] * t)
+    st = math.sin(fpar[3] * t)
+    g = fpar[4]
+    C = fnodes[0]
+    S = fnodes[1]
+    mp = fnodes[2]
+    w0 = fnodes[3]
+    mu = fnodes[4]
+    for i in range(n):
+        mu[i] = mu0 * (1.0 + eta * (C[i] * ct + S[i] * st))
+    for i in range(n):
+        m = mp[i] + mu[i] * trib[i]
+        mass[i] = m
+        im[i] = 1.0 / (m + madd[i])
+        imd[i] = 1.0 / m - im[i]
+        iair[i] = 1.0 / m
+        wair[i] = g * m
+        wload[i] = w0[i] + (mu[i] - mu0) * trib[i] * g
+
+
 @njit(**_JIT)
-def flow_pass(t, dynamic, fpar, fnodes, trib, madd, mass, im, imd, iair, wair, wload,
+def flow_pass(t, fpar, fnodes, trib, madd, mass, im, imd, iair, wair, wload,
               x, y, z, vx, vy, vz, dx, dy, dz, q0, q1, q2, p0, p1, p2):
-    """Internal-flow pass (3D) at time t [s].
+    """Internal-flow pass (3D) at time t [s] (dynamics).
 
     fpar : (U [m/s], mu_0 [kg/m], eta [-], omega [rad/s], g [m/s2]).
     fnodes : (5, n) rows C, S (cos and sin of k s + psi), the nodes' pipe mass [kg] (no
-        contents), their weight with the mean contents [N] and scratch for mu_i [kg/m].
-    dynamic : update the nodal masses (mass, im = 1/(m + ma), imd = 1/m - im, iair =
-        1/m), the weights in water (wload) and in air (wair) from mu_i, and add the Coriolis
-        force; otherwise (statics, a frozen slug) only the gradient force.
-    q0..q2 (n,) out: the flow force on each node [N] (ends: 0).
+        contents), their weight with the mean contents [N] and mu_i [kg/m] (mu_0 for a
+        steady flow); the masses and weights follow the slug (:func:`_slug_update`).
+    q0..q2 (n,) out: the flow force on each node [N] (ends: 0): the density gradient's
+    along the chord tangent of the neighbours, and the Coriolis force normal to the
+    director (the continuum's tau . tau_t = 0; its axial part coupled the axial modes,
+    which run at the stability limit, and blew up).
     p0..p2 (n,) in/out: the Coriolis force of the previous step [N]. The Coriolis force
     from the lagged velocities v^(n-1/2) alone is a forward-Euler rotation, which grows
     a mode by (1 + theta^2)^(1/2) per step (theta = 2 mu U dt / ((m + mu + m_a) l): a taut
@@ -253,39 +285,17 @@ def flow_pass(t, dynamic, fpar, fnodes, trib, madd, mass, im, imd, iair, wair, w
     1.5 f(v^(n-1/2)) - 0.5 f(v^(n-3/2)) (Adams-Bashforth 2, second order, growth ~
     theta^4 / 4 per step).
     """
+    _slug_update(t, fpar, fnodes, trib, madd, mass, im, imd, iair, wair, wload)
     n = trib.shape[0]
     U = fpar[0]
-    mu0 = fpar[1]
-    eta = fpar[2]
-    ct = math.cos(fpar[3] * t)
-    st = math.sin(fpar[3] * t)
-    g = fpar[4]
-    C = fnodes[0]
-    S = fnodes[1]
     mu = fnodes[4]
-    slug = eta != 0.0                   # steady flow: mu = mu_0, masses and weights fixed
-    if slug:
-        for i in range(n):
-            mu[i] = mu0 * (1.0 + eta * (C[i] * ct + S[i] * st))
-    if dynamic and slug:
-        mp = fnodes[2]
-        w0 = fnodes[3]
-        for i in range(n):
-            m = mp[i] + mu[i] * trib[i]
-            mass[i] = m
-            im[i] = 1.0 / (m + madd[i])
-            imd[i] = 1.0 / m - im[i]
-            iair[i] = 1.0 / m
-            wair[i] = g * m
-            wload[i] = w0[i] + (mu[i] - mu0) * trib[i] * g
-    cu = U if dynamic else 0.0
     h = 0.5 * U * U
     q0[0] = q1[0] = q2[0] = 0.0
     q0[n - 1] = q1[n - 1] = q2[n - 1] = 0.0
     one = np.uint64(1)
     for i in range(one, np.uint64(n - 1)):      # unsigned: see _NOWRAP
         gr = h * (mu[i + one] - mu[i - one])
-        c = cu * mu[i]
+        c = U * mu[i]
         cx = -c * (vx[i + one] - vx[i - one])
         cy = -c * (vy[i + one] - vy[i - one])
         cz = -c * (vz[i + one] - vz[i - one])
@@ -306,42 +316,20 @@ def flow_pass(t, dynamic, fpar, fnodes, trib, madd, mass, im, imd, iair, wair, w
 
 
 @njit(**_JIT)
-def flow_pass_2d(t, dynamic, fpar, fnodes, trib, madd, mass, im, imd, iair, wair, wload,
+def flow_pass_2d(t, fpar, fnodes, trib, madd, mass, im, imd, iair, wair, wload,
                  x, y, vx, vy, dx, dy, q0, q1, p0, p1):
     """Planar version of :func:`flow_pass`."""
+    _slug_update(t, fpar, fnodes, trib, madd, mass, im, imd, iair, wair, wload)
     n = trib.shape[0]
     U = fpar[0]
-    mu0 = fpar[1]
-    eta = fpar[2]
-    ct = math.cos(fpar[3] * t)
-    st = math.sin(fpar[3] * t)
-    g = fpar[4]
-    C = fnodes[0]
-    S = fnodes[1]
     mu = fnodes[4]
-    slug = eta != 0.0                   # steady flow: mu = mu_0, masses and weights fixed
-    if slug:
-        for i in range(n):
-            mu[i] = mu0 * (1.0 + eta * (C[i] * ct + S[i] * st))
-    if dynamic and slug:
-        mp = fnodes[2]
-        w0 = fnodes[3]
-        for i in range(n):
-            m = mp[i] + mu[i] * trib[i]
-            mass[i] = m
-            im[i] = 1.0 / (m + madd[i])
-            imd[i] = 1.0 / m - im[i]
-            iair[i] = 1.0 / m
-            wair[i] = g * m
-            wload[i] = w0[i] + (mu[i] - mu0) * trib[i] * g
-    cu = U if dynamic else 0.0
     h = 0.5 * U * U
     q0[0] = q1[0] = 0.0
     q0[n - 1] = q1[n - 1] = 0.0
     one = np.uint64(1)
     for i in range(one, np.uint64(n - 1)):      # unsigned: see _NOWRAP
         gr = h * (mu[i + one] - mu[i - one])
-        c = cu * mu[i]
+        c = U * mu[i]
         cx = -c * (vx[i + one] - vx[i - one])
         cy = -c * (vy[i + one] - vy[i - one])
         ca = cx * dx[i] + cy * dy[i]
@@ -647,7 +635,7 @@ def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, 
 def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd, jinv,
         jrot, wload, kst, cdn, cdt, heights, speeds, slopes, cdir, use_drag, cseabed, mu,
         vfric, eta, Q, use_dashpot, wair, iair, madd, sband, dband, ysurf, use_surface,
-        use_flow, flow_dynamic, t0, fpar, fnodes, FL, dt, c, top0, top_axis, top_disp, tol_f,
+        use_flow, t0, fpar, fnodes, FL, dt, c, top0, top_axis, top_disp, tol_f,
         tol_m, vmax):
     """Advance up to ``nsteps`` explicit steps.
 
@@ -662,8 +650,8 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
     wair, iair, madd, sband, dband : (n,) weight in air [N], inverse mass [1/kg], added
         mass [kg], tributary length and outer diameter [m] of the nodes, for the sea surface
         y = ysurf [m], used only when use_surface (dynamics; see :func:`node_pass`).
-    use_flow, flow_dynamic, t0, fpar, fnodes, FL : internal flow (see :func:`flow_pass`),
-        run only when use_flow: t0 [s] the time at the start of this call, FL (6, n)
+    use_flow, t0, fpar, fnodes, FL : internal flow (see :func:`flow_pass`), run only when
+        use_flow (dynamics): t0 [s] the time at the start of this call, FL (6, n)
         the flow forces (rows 0-2) and the previous step's Coriolis forces (rows 3-5).
     planar : use the planar kernels on rows 0-1 of X, V, D (z untouched) and W[2] as the
         rotation rate; F (2, ne), MA, MB (1, ne), cdir (2,) then.
@@ -694,11 +682,11 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
         if use_flow:
             tk = t0 + k * dt
             if planar:
-                flow_pass_2d(tk, flow_dynamic, fpar, fnodes, sband, madd, mass, im, imd, iair,
+                flow_pass_2d(tk, fpar, fnodes, sband, madd, mass, im, imd, iair,
                              wair, wload, X[0], X[1], V[0], V[1], D[0], D[1], FL[0], FL[1],
                              FL[3], FL[4])
             else:
-                flow_pass(tk, flow_dynamic, fpar, fnodes, sband, madd, mass, im, imd, iair,
+                flow_pass(tk, fpar, fnodes, sband, madd, mass, im, imd, iair,
                           wair, wload, X[0], X[1], X[2], V[0], V[1], V[2], D[0], D[1],
                           D[2], FL[0], FL[1], FL[2], FL[3], FL[4], FL[5])
         if planar:

@@ -124,8 +124,7 @@ class Model:
         fl = self.scene.internal_flow
         self.FL = np.zeros((6, self.mesh.n))
         self.flow_mode = mode if fl is not None else None
-        self.flow_dynamic = fl is not None and mode == "dynamic"
-        self.use_flow = self.flow_dynamic
+        self.use_flow = fl is not None and mode == "dynamic"
         self.has_slug = fl is not None and fl.has_slug and mode is not None
         self.fpar, self.fnodes = (flow_arrays(self.scene, self.mesh, self.mass, self.wload)
                                   if self.use_flow else (np.zeros(5), np.zeros((5, 1))))
@@ -214,10 +213,10 @@ class Model:
                           self.cseabed, self.mu, self.vfric,
                           self.eta, self.Q, self.use_dashpot, self.wair, self.iair,
                           self.madd, self.trib, self.dnode, self.ysurf, self.use_surface,
-                          self.use_flow, self.flow_dynamic, self.time, self.fpar, self.fnodes,
+                          self.use_flow, self.time, self.fpar, self.fnodes,
                           self.FL, dt, c, top0, axis, top_disp, tol_f, tol_m, vmax)
         self.steps += int(out[0])
-        if self.flow_dynamic:
+        if self.use_flow:
             self.time += int(out[0]) * dt
         return out
 
