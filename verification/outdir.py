@@ -44,6 +44,8 @@ STUDY_FILES = {
                  "forces.png", "report.md"),
     "yu2021": ("table.csv", "report.md", "layout.png", "gap.png", "buoyancy_loss.png",
                "current.png", "moved_up.png", "dynamics.csv", "dynamics.png"),
+    "liu2021": ("table.csv", "report.md", "top_tension.png", "static.png", "moments.png",
+                "slug_length.png"),
     "compare": COMPARE,
     "stress": STRESS,
     "cost": COST,

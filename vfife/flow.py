@@ -31,10 +31,12 @@ The element force of the VFIFE (EA times the strain) is T_e, so
 
 Statics runs no flow kernel: a steady flow has no static force, and a slug is frozen at
 t = 0 by its weight only (the equilibrium of the line with that density pattern). Its
-gradient force, the centrifugal ripple mu eta U^2 kappa, is U^2 kappa / g of the weight
-ripple mu eta g (0.2 % for Liu's riser) and enters with the dynamics: as a follower force
-in the fictitious dynamics of the relaxation it kept a hanging pipe at 5 m/s from
-converging (a steady 1e-3 x element weight residual).
+gradient force enters with the dynamics: along the pipe, U^2 k eta mu_0 per metre (U^2 k
+/ g = 5 % of the weight ripple eta mu_0 g for Liu's riser), it ripples the effective
+tension by +-eta mu_0 U^2 (100 N against 1.4 MN there), and that ripple's transverse
+effect, the centrifugal ripple eta mu_0 U^2 kappa, is U^2 kappa / g = 0.2 % of the
+weight ripple. As a follower force in the fictitious dynamics of the relaxation it kept
+a hanging pipe at 5 m/s from converging (a steady 1e-3 x element weight residual).
 Dynamics: the flow pass runs every step from t = 0 whenever the scene has
 [internal_flow] (effect ``internal_flow``; ``slug_flow`` with a slug). Stability: the
 explicit Coriolis term grows a mode by about theta^4 / 4 per step, theta = 2 mu U dt /
