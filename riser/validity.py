@@ -44,6 +44,11 @@ MIN_ELEMENTS_SEGMENT = 2
 #: memory (1e-9 m elements on a 900 m chain: 9e11 elements) instead of answering; the
 #: built-in scenes use 1,000-4,000 and the cost study's finest 5,800
 MAX_ELEMENTS_LINE = 100_000
+#: the fewest elements per slug length ([internal_flow.slug]): the nodes sample the density
+#: wave (a 0.5 m slug on 4 m elements aliased into a wave 8 times longer, quietly) and its
+#: gradient force is a central difference (8 per wavelength: 10 % low; Liu's shortest
+#: slug, 40 m on 4 m elements, has 10)
+MIN_ELEMENTS_SLUG = 8
 #: effective compression below this fraction of the largest tension is numerical noise
 COMPRESSION_NOISE = 1e-3
 #: form (b): a solved first-segment length this far (fraction) from the file's is warned
@@ -54,8 +59,9 @@ def check_resolution(scene: Scene, element_length: float, *, source: str | None 
                      key: str = "vfife.element_length") -> None:
     """Refuse (SceneError) an element length [m] too coarse for the line and its
     segments (at least :data:`MIN_ELEMENTS_LINE` elements on the line and
-    :data:`MIN_ELEMENTS_SEGMENT` on every segment) or too fine to run (at most
-    :data:`MAX_ELEMENTS_LINE` on the line)."""
+    :data:`MIN_ELEMENTS_SEGMENT` on every segment and :data:`MIN_ELEMENTS_SLUG` per slug
+    of an internal slug flow) or too fine to run (at most :data:`MAX_ELEMENTS_LINE` on the
+    line)."""
     src = source or scene.source
     total = scene.total_length
     if element_length < total / MAX_ELEMENTS_LINE:
@@ -73,6 +79,13 @@ def check_resolution(scene: Scene, element_length: float, *, source: str | None 
         raise SceneError(src, key, f"must be <= {shortest / MIN_ELEMENTS_SEGMENT:.4g} m (at "
                          f"least {MIN_ELEMENTS_SEGMENT} elements on segments[{i}], "
                          f"{shortest:g} m long), got {element_length:g}")
+    flow = scene.internal_flow
+    if flow is not None and flow.has_slug and element_length > (
+            flow.slug_length / MIN_ELEMENTS_SLUG):
+        raise SceneError(src, key, f"must be <= {flow.slug_length / MIN_ELEMENTS_SLUG:.4g} m "
+                         f"(at least {MIN_ELEMENTS_SLUG} elements per slug, "
+                         f"internal_flow.slug.slug_length = {flow.slug_length:g} m), got "
+                         f"{element_length:g}")
 
 
 def nonfinite(profile: Profile) -> str | None:

@@ -96,7 +96,8 @@ TOLERANCES = {
 #: unit of each quantity (the name with its digits removed: crest2_height -> crest_height)
 UNITS = {
     "configuration": "m", "configuration_rms": "m", "tension": "N", "moment": "N m",
-    "hang_off_tension": "N", "hang_off_wall_tension": "N", "hang_off_angle_deg": "deg", "tdp_x": "m", "tdp_tension": "N",
+    "hang_off_tension": "N", "hang_off_wall_tension": "N", "hang_off_angle_deg": "deg",
+    "tdp_x": "m", "tdp_tension": "N",
     "crest_height": "m", "sag_height": "m", "crest_s": "m", "sag_s": "m",
     "max_moment": "N m", "max_moment_s": "m", "crests_count": "-", "sags_count": "-",
 }

@@ -20,6 +20,7 @@ The dynamic run has the still-water drag on, as every dynamic run in water.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import os
 import platform
@@ -30,8 +31,6 @@ import time
 from pathlib import Path
 
 import numpy as np
-
-import dataclasses
 
 from riser.internal_flow import InternalFlow
 from riser.scene import Current, Dynamics, Scene, TopMotion
