@@ -41,3 +41,13 @@ def run_bench(baseline: Scene, current_scenes: list[Scene], repeats: int = 5) ->
         n += 1
     return {"bvp_baseline_s": statistics.median(times), "bvp_baseline_runs": repeats,
             "bvp_table2_s": time.perf_counter() - t0, "bvp_table2_solves": n}
+
+
+def median_times(scenes: list[Scene], repeats: int = 3) -> dict:
+    """scene name -> median wall time [s] of ``repeats`` solves at the scene's settings
+    (after one warm-up), for side-by-side ratios with the other methods."""
+    out = {}
+    for sc in scenes:
+        _timed(sc)
+        out[sc.name] = statistics.median(_timed(sc)[0] for _ in range(repeats))
+    return out

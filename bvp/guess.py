@@ -24,6 +24,11 @@ class BVPFailure(RuntimeError):
     """Raised internally when no starting guess or no solution can be found."""
 
 
+class NoEquilibrium(BVPFailure):
+    """A starting-guess search that shows no equilibrium of the form exists (the message
+    starts with 'no equilibrium:')."""
+
+
 def state_guess(tau, w, Ls, EI, H, V0, ox, oy, scale, grounded: float = 0.0,
                 sink: float = 0.0, EA=None) -> np.ndarray:
     """Scaled state (6n, m) at the unit coordinates ``tau`` of each stacked segment: the
@@ -81,6 +86,82 @@ def hang_off_angle(w, L, height, alpha):
             return H, 0.0, Ls
     raise BVPFailure("no catenary with a touchdown reaches the given hang_off_height with "
                      "hang_off_angle_deg; check the angle, the height and the weights")
+
+
+def top_tension(w, L, height, T_top):
+    """The J-lay form: the inextensible catenary from a touchdown (V0 = 0) to the given
+    height [m] with the given top tension [N]. T - w y is constant along a catenary, so
+    H = T_top - sum of w_i * (the height gained in segment i): for one segment H = T - w h
+    and the suspended length sqrt(h^2 + 2 h H / w); for several, a 1-D root find in H (for
+    each H, the first segment's suspended length that reaches the height)."""
+    w, L = np.asarray(w, float), np.asarray(L, float)
+    if len(L) == 1:
+        H = T_top - w[0] * height
+        if not w[0] > 0.0 or H <= 0.0:
+            raise NoEquilibrium(f"no equilibrium: top_tension {T_top / 1e3:,.6g} kN does not "
+                                f"exceed the weight of a line hanging {metres(height)} "
+                                f"({w[0] * height / 1e3:,.6g} kN)")
+        return H, 0.0, np.array([math.sqrt(height ** 2 + 2.0 * height * H / w[0])])
+
+    def top(H, l1):
+        Ls = L.copy()
+        Ls[0] = l1
+        st = catenary_state(np.array([Ls.sum()]), w, Ls, H, 0.0)
+        return float(st["y"][0]), float(st["tension"][0])
+
+    def first_length(H):
+        grid = np.geomspace(1e-6 * max(L[0], height), 20.0 * max(L[0], height), 80)
+        vals = [top(H, g)[0] - height for g in grid]
+        for a, b, fa, fb in zip(grid[:-1], grid[1:], vals[:-1], vals[1:]):
+            if fa * fb <= 0:
+                return brentq(lambda l1: top(H, l1)[0] - height, a, b, xtol=1e-9 * L[0])
+        return None
+
+    def resid(H):
+        l1 = first_length(H)
+        return None if l1 is None else top(H, l1)[1] - T_top
+
+    prev = None
+    for H in np.geomspace(1e-6 * T_top, T_top, 60):
+        r = resid(H)
+        if r is None:
+            continue
+        if prev is not None and prev[1] * r <= 0:
+            Hs = brentq(lambda h: resid(h) if resid(h) is not None else 0.0, prev[0], H,
+                        xtol=1e-12 * T_top)
+            Ls = L.copy()
+            Ls[0] = first_length(Hs)
+            return Hs, 0.0, Ls
+        prev = (H, r)
+    raise NoEquilibrium(f"no equilibrium: no catenary from a touchdown reaches "
+                        f"hang_off_height {metres(height)} with top_tension "
+                        f"{T_top / 1e3:,.6g} kN (the top tension cannot hold the line)")
+
+
+def top_tension_reach(w, L, EA, T_top) -> float:
+    """The largest height [m] a line of submerged weights ``w`` [N/m] > 0, segment lengths
+    ``L`` [m] (the first free) and axial stiffnesses ``EA`` [N] (inf: inextensible) can
+    reach from a touchdown with the top tension ``T_top`` [N]; inf when a segment is
+    buoyant (no simple bound).
+
+    T' = w sin(theta) per unstretched length, so T_top - T_TDP = sum of w_i eta_i, eta_i
+    the unstretched rise of segment i (eta_i <= L_i but the first's), and T_TDP = H -> 0 at
+    the bound: the budget T_top bought rise at w_i a metre, cheapest first. One line type:
+    T/w + T^2 / (2 w EA), the line hanging straight down (its stretch integrated); several:
+    the rise times the largest stretch factor 1 + T_top / EA."""
+    w, L, EA = (np.asarray(a, float) for a in (w, L, EA))
+    if not np.all(w > 0.0):
+        return math.inf
+    if np.all(w == w[0]) and np.all(EA == EA[0]):
+        return T_top / w[0] + T_top ** 2 / (2.0 * w[0] * EA[0])
+    budget, rise = T_top, 0.0
+    for i in np.argsort(w, kind="stable"):
+        eta = budget / w[i] if i == 0 else min(L[i], budget / w[i])
+        rise += eta
+        budget -= w[i] * eta
+        if budget <= 0.0:
+            break
+    return rise * (1.0 + T_top / float(np.min(EA)))
 
 
 def grounded(w, L, dx, dy):

@@ -43,7 +43,8 @@ def build_profile(prob, sol, water_depth: float | None) -> tuple[Profile, dict]:
     c = {k: np.concatenate(v) for k, v in cols.items()}
     tdp_s = None
     checks: dict = {"max_strain": strain}
-    if prob.form in ("tdp_tension", "hang_off_angle", "fixed_seabed", "fixed_lifted"):
+    if prob.form in ("tdp_tension", "hang_off_angle", "top_tension", "fixed_seabed",
+                     "fixed_lifted"):
         tdp_s = grounded
     if prob.form == "fixed_lifted":
         checks["lifted_off_anchor"] = True

@@ -12,6 +12,10 @@ The model (``bvp/equations.py``) is chosen by the scene: ``scene.axial_model``
 - ``hang_off_angle`` (rigid seabed): touchdown at the origin (theta = 0, M = 0); hang-off
   height and angle given, M = 0 there; the suspended length of the first segment is an
   unknown parameter, the TDP tension an output.
+- ``top_tension`` (J-lay, rigid seabed): as ``hang_off_angle`` with the hang-off height
+  and effective tension given (M = 0 there); the hang-off x and angle and the TDP tension
+  are outputs. The first segment's length in the file is the pipe available: a solved
+  suspended length beyond it is no equilibrium; the rest lies on the seabed.
 - ``fixed`` on an elastic seabed (the default with a [seabed]): the whole line from the
   anchor to the hang-off, positions given and M = 0 at both; wherever it is below y = 0
   the seabed pushes it up with k max(-y, 0), so the lift-off point (any contact) is found
@@ -44,7 +48,7 @@ from riser.sections import segment_properties
 from . import guess as guesses
 from .catenary import catenary_state
 from .equations import IM, IT, ITH, IX, IY, NSTATE, BeamModel
-from .guess import BVPFailure
+from .guess import BVPFailure, NoEquilibrium
 from .mesh import clustered_mesh
 from .output import build_profile, grounded_drag
 from .strategy import (good, hopeless_span, hopeless_start, second_contact,
@@ -123,7 +127,8 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
         try:
             prob = _build_problem(scene, split)
         except BVPFailure as exc:
-            return result(Status.NOT_CONVERGED, str(exc))
+            return result(Status.NO_EQUILIBRIUM if isinstance(exc, NoEquilibrium)
+                          else Status.NOT_CONVERGED, str(exc))
         early = hopeless_start(scene, prob, tau0)
         if early is not None and early[0] is Status.REFUSED:
             raise UnsupportedSceneError(f"{scene.source}: bvp refused: {early[1]}")
@@ -163,10 +168,12 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
         return result(Status.DIVERGED, bad)
     message = f"converged ({how})"
     lengths = [g.length for g in scene.segments]
-    if scene.ends.kind == "hang_off_angle":
+    if scene.ends.kind in ("hang_off_angle", "top_tension"):
         lengths[0] = checks["first_segment_suspended_length"]
         note, warn = validity.first_segment_warnings(scene, lengths[0])
         info["first_segment_length_in_file"] = scene.segments[0].length
+        if scene.ends.kind == "top_tension" and lengths[0] > scene.segments[0].length:
+            return result(Status.NO_EQUILIBRIUM, "no equilibrium: " + note)
         message += "; " + note
         warnings.extend(warn)
     warnings.extend(validity.profile_warnings(scene, profile, lengths))
@@ -234,6 +241,9 @@ def _build_problem(scene: Scene, split: bool = True) -> _Problem:
         free_first = True
         H, V0, Ls = guesses.hang_off_angle(w, L, ends.hang_off_height,
                                            math.radians(ends.hang_off_angle_deg))
+    elif form == "top_tension":
+        free_first = True
+        H, V0, Ls = guesses.top_tension(w, L, ends.hang_off_height, ends.top_tension)
     else:
         anchor = ends.anchor
         dx = ends.hang_off[0] - anchor[0]
@@ -313,13 +323,15 @@ def _boundary_conditions(form: str, scene: Scene, model: BeamModel, L: np.ndarra
         def bc(ya, yb, p=None):
             return np.array([ya[IX], ya[IY], ya[ITH], ya[IM], ya[IT] - Tt, *continuity(ya, yb),
                              yb[top + IM]])
-    elif form == "hang_off_angle":
+    elif form in ("hang_off_angle", "top_tension"):
         Hh = ends.hang_off_height / sc[IY]
-        alpha = math.radians(ends.hang_off_angle_deg)
+        # the third condition at the top: the angle (form b) or the tension (J-lay)
+        i3, v3 = ((ITH, math.radians(ends.hang_off_angle_deg)) if form == "hang_off_angle"
+                  else (IT, ends.top_tension / sc[IT]))
 
         def bc(ya, yb, p):
             return np.array([ya[IX], ya[IY], ya[ITH], ya[IM], *continuity(ya, yb),
-                             yb[top + IM], yb[top + IY] - Hh, yb[top + ITH] - alpha])
+                             yb[top + IM], yb[top + IY] - Hh, yb[top + i3] - v3])
     elif form == "fixed_seabed":
         xa = ends.anchor[0]
         xh, yh = ends.hang_off[0] / sc[IX], ends.hang_off[1] / sc[IY]

@@ -18,7 +18,7 @@ from riser.sections import segment_properties
 from riser.settings import BVPSettings
 
 from .equations import IT, IY, NSTATE
-from .guess import (fold_back, metres, span_words, too_long_for_seabed,
+from .guess import (fold_back, metres, span_words, too_long_for_seabed, top_tension_reach,
                     touchdown_beyond_first)
 
 
@@ -110,17 +110,20 @@ def solve_with_continuation(prob, tau0: np.ndarray, settings: BVPSettings,
 def good(sol, prob) -> bool:
     if not sol.success or not np.all(np.isfinite(sol.y)):
         return False
-    if prob.form in ("hang_off_angle", "fixed_seabed", "fixed_liftoff"):
+    if prob.form in ("hang_off_angle", "top_tension", "fixed_seabed", "fixed_liftoff"):
+        # the forms (b) and J-lay may solve more than the file's first segment: the solver
+        # says so (a warning, or no_equilibrium for the J-lay form)
         l1 = sol.p[0] * prob.model.length_scale
-        if l1 <= 0.0 or (prob.form != "hang_off_angle" and l1 > prob.first_total * (1 + 1e-9)):
+        free = prob.form in ("hang_off_angle", "top_tension")
+        if l1 <= 0.0 or (not free and l1 > prob.first_total * (1 + 1e-9)):
             return False
     return True
 
 
 # ----------------------------------------------------------------- giving up early
 #: forms whose start has one contact zone (or touchdown) at the bottom end only
-ONE_CONTACT_FORMS = ("tdp_tension", "hang_off_angle", "fixed_seabed", "fixed_lifted",
-                     "fixed_liftoff")
+ONE_CONTACT_FORMS = ("tdp_tension", "hang_off_angle", "top_tension", "fixed_seabed",
+                     "fixed_lifted", "fixed_liftoff")
 #: a starting catenary deeper than this fraction of the hang-off height [-] below the
 #: seabed, away from the bottom contact, is a second touchdown the BVP's start does not
 #: reach. Measured on hard-buoyancy-loss with the lost section's buoyancy B [N/m] (dip of
@@ -134,9 +137,12 @@ SECOND_CONTACT_DEPTH = 0.03
 
 def hopeless_span(scene: Scene) -> str:
     """Why a fixed-ends line on a seabed cannot have an equilibrium of the BVP's forms
-    (too long for the span: it would fold back), else ''. Geometry only, before any
-    guess is built."""
+    (too long for the span: it would fold back), or a J-lay top tension cannot hold a line
+    that reaches the seabed (:func:`bvp.guess.top_tension_reach`), else ''. Geometry and
+    weights only, before any guess is built."""
     ends = scene.ends
+    if ends.kind == "top_tension":
+        return _too_little_tension(scene)
     if ends.kind != "fixed" or scene.seabed_model is None:
         return ""
     if scene.seabed_model == "rigid" and ends.anchor[1] != 0.0:
@@ -144,6 +150,25 @@ def hopeless_span(scene: Scene) -> str:
     props = segment_properties(scene)
     return too_long_for_seabed([p.weight for p in props], [p.length for p in props],
                                ends.anchor, ends.hang_off)
+
+
+def _too_little_tension(scene: Scene) -> str:
+    """The J-lay form: why the top tension cannot hold the line from the hang-off height
+    down to the seabed (with H -> 0 it hangs straight down), else ''."""
+    props = segment_properties(scene)
+    w = [p.weight for p in props]
+    EA = [p.EA if scene.axial_model == "extensible" else math.inf for p in props]
+    T, h = scene.ends.top_tension, scene.ends.hang_off_height
+    reach = top_tension_reach(w, [p.length for p in props], EA, T)
+    if h <= reach:
+        return ""
+    one = len(set(w)) == 1 and len(set(EA)) == 1
+    how = (f"T/w{' + T^2/(2 w EA)' if math.isfinite(EA[0]) else ''} with w = "
+           f"{w[0] / 1e3:.4g} kN/m" if one else "its segments' weights")
+    return (f"no equilibrium: top_tension {T / 1e3:,.6g} kN cannot hold a line that reaches "
+            f"the seabed from hang_off_height {metres(h)}: even with zero tension at the "
+            f"touchdown it reaches at most {metres(reach)} ({how}); raise "
+            "top_tension or lower the hang-off")
 
 
 def hopeless_start(scene: Scene, prob, tau: np.ndarray) -> tuple[Status, str] | None:

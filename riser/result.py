@@ -16,7 +16,7 @@ from pathlib import Path
 from .profile import Profile, summarize, write_json
 
 #: the methods that fill this contract (``SolveResult.method``)
-METHODS = ("bvp", "vfife")
+METHODS = ("bvp", "vfife", "analytic")
 
 
 class Status(str, Enum):
@@ -75,7 +75,7 @@ class SolveResult:
 
     Attributes
     ----------
-    method : 'bvp' or 'vfife'.
+    method : 'bvp', 'vfife' or 'analytic'.
     scene : scene name.
     status : how the run ended (:class:`Status`).
     message : why it stopped (always filled; the reason for a failure).

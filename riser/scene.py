@@ -21,7 +21,7 @@ import numpy as np
 
 from .errors import SceneError
 from .internal_flow import InternalFlow
-from .settings import MAX_SEGMENT_LENGTH, BVPSettings, VFIFESettings
+from .settings import MAX_SEGMENT_LENGTH, AnalyticSettings, BVPSettings, VFIFESettings
 
 # Plausible ranges: wide enough for any real riser, narrow enough to catch unit slips
 # (mm instead of m, kN instead of N, GPa instead of Pa). One place for all of them.
@@ -158,7 +158,15 @@ class Ends:
       (``hang_off_angle_deg``; the file may give it from the vertical, converted on
       reading), the first segment's suspended length solved (its length in the file is
       ``segments[0].length``);
+    - 'top_tension' (the J-lay form): touchdown at the origin on a rigid seabed (theta = 0,
+      M = 0 there); hang-off height [m] and effective tension ``top_tension`` [N] given,
+      M = 0 at the hang-off; the first segment's suspended length is solved (its length in
+      the file, ``segments[0].length``, is the pipe available: the suspended part plus
+      what lies on the seabed); the hang-off x, the angle and the TDP tension are outputs;
     - 'fixed': anchor and hang-off positions (x, y) [m] given.
+
+    The forms other than 'fixed' are the Wang family: inextensible on a rigid seabed by
+    default (``Scene.axial_model``, ``Scene.seabed_model``).
     """
 
     kind: str
@@ -167,6 +175,7 @@ class Ends:
     hang_off_angle_deg: float | None = None
     anchor: tuple[float, float] | None = None
     hang_off: tuple[float, float] | None = None
+    top_tension: float | None = None
 
 
 @dataclass(frozen=True)
@@ -240,6 +249,7 @@ class Scene:
     dynamics: Dynamics | None = None
     internal_flow: InternalFlow | None = None
     bvp: BVPSettings = field(default_factory=BVPSettings)
+    analytic: AnalyticSettings = field(default_factory=AnalyticSettings)
     vfife: VFIFESettings = field(default_factory=VFIFESettings)
     model: dict = field(default_factory=dict)
     source: str = "<scene>"

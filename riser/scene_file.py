@@ -16,7 +16,7 @@ from .errors import SceneError
 from .internal_flow import check_internal_flow, read_internal_flow
 from .scene import (LIMITS, Current, Dynamics, Ends, LineType, Scene, Seabed, Segment,
                     TopMotion, require_axial_stiffness)
-from .settings import BVPSettings, VFIFESettings
+from .settings import AnalyticSettings, BVPSettings, VFIFESettings
 from .tomlread import Table
 
 # ---------------------------------------------------------------------- loading
@@ -115,14 +115,15 @@ def scene_from_dict(data: dict, source: str = "<scene>") -> Scene:
     model_t = root.table("model")
     model = _read_model(model_t) if model_t is not None else {}
     bvp = BVPSettings.read(root.table("bvp"))
+    analytic = AnalyticSettings.read(root.table("analytic"))
     vfife = VFIFESettings.read(root.table("vfife"))
     root.finish()
 
     scene = Scene(name=name, title=title, provenance=provenance, gravity=gravity,
                   water_density=water_density, water_depth=water_depth, current=current,
                   seabed=seabed, line_types=line_types, segments=segments, ends=ends,
-                  dynamics=dynamics, internal_flow=flow, bvp=bvp, vfife=vfife, model=model,
-                  source=source)
+                  dynamics=dynamics, internal_flow=flow, bvp=bvp, analytic=analytic, vfife=vfife,
+                  model=model, source=source)
     if flow is not None:
         check_internal_flow(scene)
     _check_model(scene)
@@ -242,9 +243,12 @@ def _read_segment(t: Table, line_types: dict[str, LineType]) -> Segment:
 #: say which (a riser's hang-off angle is usually quoted from the vertical)
 ANGLE_KEYS = ("hang_off_angle_from_horizontal_deg", "hang_off_angle_from_vertical_deg")
 
+#: the keys of each form; hang_off_height belongs to two: without top_tension it is form
+#: (b)'s (alone, it asks for its angle)
 _END_FORMS = {
     "tdp_tension": ("tdp_tension",),
     "hang_off_angle": ("hang_off_height", *ANGLE_KEYS),
+    "top_tension": ("hang_off_height", "top_tension"),
     "fixed": ("anchor", "hang_off"),
 }
 
@@ -253,13 +257,16 @@ def _read_ends(t: Table) -> Ends:
     if t.has("hang_off_angle_deg"):
         raise t.error("hang_off_angle_deg", "ambiguous: say which angle it is, "
                       "hang_off_angle_from_horizontal_deg or hang_off_angle_from_vertical_deg")
-    present = [kind for kind, keys in _END_FORMS.items() if any(t.has(k) for k in keys)]
+    present = [kind for kind, keys in _END_FORMS.items()
+               if any(t.has(k) for k in keys if k != "hang_off_height") or (
+                   kind == "hang_off_angle" and t.has("hang_off_height")
+                   and not t.has("top_tension"))]
     if not present:
         raise t.error("", "give one of: tdp_tension; hang_off_height + "
                       "hang_off_angle_from_horizontal_deg (or _from_vertical_deg); "
-                      "anchor + hang_off")
+                      "hang_off_height + top_tension; anchor + hang_off")
     if len(present) > 1:
-        keys = [k for kind in present for k in _END_FORMS[kind] if t.has(k)]
+        keys = list(dict.fromkeys(k for kind in present for k in _END_FORMS[kind] if t.has(k)))
         raise t.error(keys[-1], f"more than one [ends] form given ({', '.join(keys)}); "
                       "use exactly one")
     kind = present[0]
@@ -269,6 +276,13 @@ def _read_ends(t: Table) -> Ends:
     elif kind == "hang_off_angle":
         height = t.number("hang_off_height", gt=0.0, le=C, unit="m")
         ends = Ends(kind, hang_off_height=height, hang_off_angle_deg=_read_angle(t))
+    elif kind == "top_tension":
+        top = t.number("top_tension", gt=0.0, le=LIMITS["tension"], unit="N")
+        if not t.has("hang_off_height"):
+            raise t.error("hang_off_height", "required with top_tension (the J-lay form: "
+                          "the hang-off height [m] and the effective tension there [N])")
+        height = t.number("hang_off_height", gt=0.0, le=C, unit="m")
+        ends = Ends(kind, hang_off_height=height, top_tension=top)
     else:
         anchor = t.numbers("anchor", length=2, ge=-C, le=C, unit="m")
         hang = t.numbers("hang_off", length=2, ge=-C, le=C, unit="m")
@@ -289,9 +303,10 @@ def _read_angle(t: Table) -> float:
     """The hang-off angle from the horizontal [deg], given from either reference."""
     given = [k for k in ANGLE_KEYS if t.has(k)]
     if len(given) != 1:
+        why = (" (both given)" if given else " with hang_off_height (or top_tension with "
+               "it: the J-lay form)")
         raise t.error(ANGLE_KEYS[0], "give exactly one of hang_off_angle_from_horizontal_deg "
-                      "and hang_off_angle_from_vertical_deg" + (" (both given)" if given
-                                                                 else " with hang_off_height"))
+                      "and hang_off_angle_from_vertical_deg" + why)
     if given[0] == ANGLE_KEYS[0]:
         return t.number(ANGLE_KEYS[0], gt=0.0, le=90.0, unit="deg")
     return 90.0 - t.number(ANGLE_KEYS[1], ge=0.0, lt=90.0, unit="deg")
@@ -372,7 +387,7 @@ def _check_geometry(scene: Scene) -> None:
             raise SceneError(src, "ends.hang_off[1]", f"must be <= water_depth "
                              f"{scene.water_depth:g} m (the model is fully submerged), "
                              f"got {e.hang_off[1]:g}")
-    if e.kind == "hang_off_angle":
+    if e.kind in ("hang_off_angle", "top_tension"):
         if scene.water_depth is not None and e.hang_off_height > scene.water_depth:
             raise SceneError(src, "ends.hang_off_height", f"must be <= water_depth "
                              f"{scene.water_depth:g} m, got {e.hang_off_height:g}")

@@ -1,7 +1,7 @@
 """Solver settings of a scene: typed, frozen, validated, each default written once.
 
-``[bvp]`` becomes :class:`BVPSettings` and ``[vfife]`` (with its ``[vfife.expert]``
-sub-table) :class:`VFIFESettings`. Every field carries its range and unit in its metadata;
+``[bvp]`` becomes :class:`BVPSettings`, ``[analytic]`` :class:`AnalyticSettings` and
+``[vfife]`` (with its ``[vfife.expert]`` sub-table) :class:`VFIFESettings`. Every field carries its range and unit in its metadata;
 the same spec validates the scene file and any programmatic change
 (``scene.vfife.replace(static_damping=...)``), so a bad value gets the same one-line
 :class:`~riser.errors.SceneError` naming the key wherever it comes from.
@@ -25,8 +25,8 @@ MAX_SEGMENT_LENGTH = 5.0e4
 
 def _knob(default: Any, kind: str = "number", *, expert: bool = False, doc: str = "",
           **bounds: Any):
-    """A settings field: ``kind`` 'number' | 'integer' | 'boolean' | 'strings'; ``bounds``
-    are the Table getter's (gt, ge, le, unit, choices)."""
+    """A settings field: ``kind`` 'number' | 'integer' | 'boolean' | 'string' | 'strings';
+    ``bounds`` are the Table getter's (gt, ge, le, unit, choices)."""
     return field(default=default,
                  metadata={"kind": kind, "expert": expert, "doc": doc, "bounds": bounds})
 
@@ -82,6 +82,8 @@ def _get(t: Table, f: dataclasses.Field) -> Any:
         return t.integer(f.name, default, **bounds)
     if kind == "boolean":
         return t.boolean(f.name, default)
+    if kind == "string":
+        return t.string(f.name, default, **bounds)
     return t.strings(f.name, default, **bounds)
 
 
@@ -112,6 +114,20 @@ class BVPSettings(_Settings):
                            doc="largest mesh solve_bvp may refine to")
     initial_nodes: int = _knob(400, "integer", ge=20, le=100_000,
                                doc="nodes of the starting mesh (clustered at the ends)")
+
+
+@dataclass(frozen=True)
+class AnalyticSettings(_Settings):
+    """``[analytic]``: which model the analytic method evaluates (analytic/composite.py)."""
+
+    TABLE = "analytic"
+    model: str = _knob("composite", "string", choices=("composite", "piecewise", "catenary"),
+                       doc="composite asymptotic solution, Kang's piecewise model, or the "
+                           "catenary alone")
+    curvature_threshold: float | None = _knob(
+        None, gt=0.0, le=10.0, unit="1/m",
+        doc="piecewise model: catenary curvature [1/m] below which the catenary takes over "
+            "from the beam (default: half the catenary's touchdown curvature w/H)")
 
 
 @dataclass(frozen=True)

@@ -18,7 +18,8 @@ DEFAULT_SEABED_STIFFNESS = 1.0e5
 def fixed_ends_scene(scene: Scene, hang_off_xy, seabed_length: float, *,
                      first_segment_length: float | None = None,
                      seabed_stiffness: float | None = None) -> Scene:
-    """Fixed-ends copy of a touchdown-form scene ('tdp_tension' or 'hang_off_angle').
+    """Fixed-ends copy of a touchdown-form scene ('tdp_tension', 'hang_off_angle' or
+    'top_tension').
 
     The hang-off is fixed at ``hang_off_xy`` = (x, y) [m] (e.g. the BVP's top point), the
     anchor is put on the seabed at (-seabed_length, 0), and the first (bottom) segment gets

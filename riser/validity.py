@@ -17,7 +17,8 @@ the console; ``--strict`` turns them into exit 1). The names:
   than the line's diameter (a linear Winkler law no longer describes the soil);
 - ``compression``: effective compression in a line type with ``compression = false``
   (chain, rope, slack cable);
-- ``first_segment_length``: form (b) solved a suspended length far from the file's.
+- ``first_segment_length``: form (b) solved a suspended length far from the file's (not
+  for the J-lay form, whose file length includes the line on the seabed).
 
 The solvers add two names of their own: ``resolution`` (VFIFE elements long against the
 bending lengths) and ``ignored_input`` (a key the method does not model).
@@ -173,9 +174,20 @@ def profile_warnings(scene: Scene, profile: Profile, lengths=None) -> list[str]:
 
 def first_segment_warnings(scene: Scene, solved: float) -> tuple[str, list[str]]:
     """Form (b): a sentence saying the first segment's suspended length was solved
-    [m], and a named warning when it is far from the file's."""
+    [m], and a named warning when it is far from the file's. The J-lay form
+    ('top_tension'): the file's length is the pipe available, the suspended part plus what
+    lies on the seabed; the sentence says both (a solver finds no equilibrium when the
+    suspended part is longer), no warning."""
     given = scene.segments[0].length
     diff = solved - given
+    if scene.ends.kind == "top_tension":
+        if solved > given:
+            return (f"the solved suspended length of segments[0], {solved:.3f} m, exceeds its "
+                    f"length in the file, {given:g} m, the pipe available (the suspended part "
+                    "plus what lies on the seabed): lengthen segments[0] or lower "
+                    "top_tension"), []
+        return (f"segments[0] suspended length solved: {solved:.3f} m; {-diff:.3f} m of the "
+                f"file's {given:g} m lies on the seabed"), []
     note = (f"segments[0] suspended length solved: {solved:.3f} m (the file gives "
             f"{given:g} m; {diff:+.3f} m, {100 * diff / given:+.2f} %)")
     warn = []

@@ -8,10 +8,10 @@ import ast
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-PACKAGES = ("riser", "bvp", "vfife", "verification")
+PACKAGES = ("riser", "bvp", "vfife", "analytic", "verification")
 #: package -> project packages it may import (ARCHITECTURE.md)
-ALLOWED = {"riser": set(), "bvp": {"riser"}, "vfife": {"riser"},
-           "verification": {"riser", "bvp", "vfife"}}
+ALLOWED = {"riser": set(), "bvp": {"riser"}, "vfife": {"riser"}, "analytic": {"riser"},
+           "verification": {"riser", "bvp", "vfife", "analytic"}}
 #: the size rule: ~400 lines a module; vfife/kernels.py is one concern and may be long
 MAX_LINES = 420
 LONG_OK = {"vfife/kernels.py"}

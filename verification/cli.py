@@ -184,6 +184,8 @@ def cmd_compare(args) -> int:
         flag = "ok  " if r["pass"] else "FAIL"
         rel = f"{100 * r['rel_diff']:+.4f} %" if r["rel_diff"] is not None else ""
         print(f"  {flag} {r['quantity']:<22} |diff| {r['abs_diff'] if r['abs_diff'] is not None else float('nan'):.6g} {rel}")
+    if comp.analytic_note:
+        print(f"  {comp.analytic_note}")
     print(f"{scene.name}: {'PASS' if comp.passed else 'FAIL'}; wrote {out}/agreement.csv, report.md")
     warned = max(_warn(comp.bvp, args.strict), _warn(comp.vfife, args.strict))
     return 0 if comp.passed and not warned else 1
@@ -234,7 +236,13 @@ def cmd_stress(args) -> int:
     return 1 if len(silent) else 0
 
 
+#: the single-section scenes the bench times with the analytic method and the BVP
+ANALYTIC_BENCH_SCENES = ("scr-steel", "kang2015-jlay")
+
+
 def cmd_bench(args) -> int:
+    from analytic.bench import median_times as analytic_times
+    from bvp.bench import median_times as bvp_times
     from bvp.bench import run_bench as bvp_bench
     from vfife.bench import format_table, run_bench
 
@@ -244,8 +252,16 @@ def cmd_bench(args) -> int:
     bench = run_bench(out, wang2014.bench_scene())
     scenes = wang2014.SCENES
     bench["bvp"] = bvp_bench(resolve(scenes[0.0]), [resolve(n) for v, n in scenes.items() if v])
-    (out / "bench.json").write_text(json.dumps(bench, indent=2) + "\n")
     print(format_table(bench))
+    # the analytic method against the BVP on the same single-section scenes, side by side
+    single = [resolve(n) for n in ANALYTIC_BENCH_SCENES]
+    a_t, b_t = analytic_times(single), bvp_times(single)
+    bench["analytic"] = {n: {"analytic_s": a_t[n], "bvp_s": b_t[n], "bvp_over_analytic":
+                             b_t[n] / a_t[n]} for n in a_t}
+    (out / "bench.json").write_text(json.dumps(bench, indent=2) + "\n")
+    for n, r in bench["analytic"].items():
+        print(f"analytic: {n} {1e3 * r['analytic_s']:.2f} ms a solve (median), BVP "
+              f"{r['bvp_s']:.3f} s: BVP / analytic = {r['bvp_over_analytic']:.0f}")
     b = bench["bvp"]
     print(f"BVP: Wang baseline at tolerance 1e-6 {b['bvp_baseline_s']:.3f} s (median of "
           f"{b['bvp_baseline_runs']}, target < 0.5 s); Table 2 batch of {b['bvp_table2_solves']} "

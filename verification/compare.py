@@ -1,10 +1,12 @@
-"""VFIFE vs BVP comparison protocol: metrics, the pipeline and its report.
+"""VFIFE vs BVP comparison protocol: metrics, the pipeline and its report (with the
+analytic method as a third column where it applies, verification/compare_analytic.py).
 
 Like with like: both methods solve the same scene in the same continuum model, an
 extensible line (strain T/EA) on a unilateral frictionless Winkler seabed of the scene's
 stiffness. A fixed-ends scene is solved as it is by both. A scene in a Wang form
-(touchdown tension, or hang-off height and angle) is solved once by the BVP in its paper
-model (inextensible on a rigid seabed), converted once to fixed ends (hang-off at that
+(touchdown tension; hang-off height and angle; or, J-lay, hang-off height and top
+tension) is solved once by the BVP in its paper model (inextensible on a rigid seabed),
+converted once to fixed ends (hang-off at that
 BVP's top point, anchor on the seabed with extra line ahead of the touchdown,
 :func:`verification.pipeline.vfife_equivalent`), and both methods solve the
 converted scene. The verdict is that matched comparison alone.
@@ -49,12 +51,14 @@ from riser.errors import SolveFailed
 from riser.profile import Profile, summarize
 from riser.scene import Scene
 
+from .compare_analytic import third_column
 from .pipeline import shifted, vfife_equivalent
 from .quantities import (curve_distance, match_feature, nodal_average,
                          peak_location_offset, reference_depth, signed_moment)
 from .tolerances import tolerance, tolerance_value, unit
 
-AGREEMENT_COLUMNS = ("quantity", "bvp", "vfife", "abs_diff", "rel_diff", "tolerance", "pass")
+AGREEMENT_COLUMNS = ("quantity", "bvp", "vfife", "abs_diff", "rel_diff", "tolerance", "pass",
+                     "analytic", "analytic_rel_diff")
 
 #: differences (and values) below this fraction of their basis are printed as 0: the
 #: solvers write their profiles with 10 significant digits, so nothing below ~1e-9 of a
@@ -66,7 +70,7 @@ PAPER_MODEL = {"axial": "inextensible", "seabed": "rigid"}
 
 
 def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
-              s_shift: float = 0.0) -> list[dict]:
+              s_shift: float = 0.0, nodal: bool = True) -> list[dict]:
     """The protocol's rows for two static profiles.
 
     Each row has the :data:`AGREEMENT_COLUMNS` (``abs_diff`` = |VFIFE - BVP|, ``rel_diff``
@@ -74,7 +78,9 @@ def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
     :func:`verification.tolerances.tolerance`) and, for the report, ``unit``, ``diff``
     (signed, in the unit), ``basis_label``, ``tol_label`` and ``at_s`` (arc length of the
     largest profile difference, BVP coordinate). ``s_shift`` [m] is subtracted from the
-    VFIFE arc lengths."""
+    VFIFE arc lengths. ``nodal``: take the BVP tension through the VFIFE's nodal average
+    (module docstring); False compares point values (a second profile that is not a
+    VFIFE's, e.g. the analytic method's)."""
     rows: list[dict] = []
     vf = shifted(vf_prof, s_shift)
     sb, sv = summarize(bvp_prof), summarize(vf)
@@ -106,7 +112,9 @@ def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
     # tension and moment at the VFIFE nodes, where VFIFE defines them (see module notes)
     sel = (vf.s >= lo - 1e-9) & (vf.s <= hi + 1e-9)
     grid = vf.s[sel]
-    dT = vf.tension[sel] - nodal_average(vf.s, bvp_prof.s, bvp_prof.tension)[sel]
+    ref = (nodal_average(vf.s, bvp_prof.s, bvp_prof.tension) if nodal
+           else np.interp(vf.s, bvp_prof.s, bvp_prof.tension))
+    dT = vf.tension[sel] - ref[sel]
     dM = signed_moment(vf)[sel] - np.interp(grid, bvp_prof.s, signed_moment(bvp_prof))
     for name, d in (("tension", dT), ("moment", dM)):
         i = int(np.argmax(np.abs(d)))
@@ -166,6 +174,8 @@ class Comparison:
     paper: object = None
     paper_rows: list[dict] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
+    analytic: object = None
+    analytic_note: str = ""
 
     @property
     def passed(self) -> bool:
@@ -250,6 +260,9 @@ def compare(scene: Scene, *, element_length: float | None = None, paper_model: b
     rows = agreement(bp, vp, depth)
     comp = Comparison(scene, vf_scene, s_shift, depth, b, v, rows, matched_scene=matched,
                       notes=notes)
+    # the third column where it applies (verification/compare_analytic.py)
+    comp.analytic, comp.analytic_note = third_column(matched, bp, s_shift, depth, rows,
+                                                    agreement)
     if paper_model:
         if paper is None:
             try:

@@ -25,7 +25,8 @@ SOLVE = ("profile.csv", "summary.json", "timeseries.csv", "envelope.csv", "state
 #: ``compare`` (and each scene folder of ``reproduce compare``): the protocol's files and
 #: one solve folder per method
 COMPARE = ("agreement.csv", "report.md", "configurations.png", "forces.png", "differences.png",
-           *(f"{sub}/{name}" for sub in ("bvp", "vfife", "bvp_paper_model") for name in SOLVE))
+           *(f"{sub}/{name}" for sub in ("bvp", "vfife", "analytic", "bvp_paper_model")
+             for name in SOLVE))
 #: ``cost`` (and each scene folder of ``reproduce cost``)
 COST = ("runs.csv", "values.csv", "report.md", "error_vs_time.png",
         "error_vs_element_length.png", "time_vs_elements.png", "dynamics.csv",
@@ -46,6 +47,8 @@ STUDY_FILES = {
                "current.png", "moved_up.png", "dynamics.csv", "dynamics.png"),
     "liu2021": ("table.csv", "report.md", "top_tension.png", "static.png", "moments.png",
                 "slug_length.png"),
+    "kang2015": ("table.csv", "piecewise.csv", "epsilon.csv", "report.md", "base.png",
+                 "matched.png", "families.png", "epsilon.png"),
     "compare": COMPARE,
     "stress": STRESS,
     "cost": COST,

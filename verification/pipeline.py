@@ -1,9 +1,9 @@
 """One way to run a method on a scene, used by every command and study.
 
 :func:`solve_scene` solves a scene with one method. The VFIFE needs both ends fixed in
-space; a scene in a Wang form (touchdown tension, or hang-off height and angle) leaves the
-hang-off point as an output. :func:`vfife_equivalent` is the one conversion every caller
-uses: the BVP solves the scene as given (its own model, inextensible on a rigid seabed by
+space; a scene in a Wang form (touchdown tension; hang-off height and angle; or, J-lay,
+hang-off height and top tension) leaves the hang-off point as an output.
+:func:`vfife_equivalent` is the one conversion every caller uses: the BVP solves the scene as given (its own model, inextensible on a rigid seabed by
 default), the hang-off is fixed at that solution's top point, and ``[vfife]
 seabed_length`` (300 m) of line is added to the first segment on an elastic seabed ahead
 of that touchdown, so that the touchdown is free to move (``riser.transform``). That
@@ -18,6 +18,7 @@ import dataclasses
 import time
 from dataclasses import dataclass
 
+import analytic
 import bvp
 import vfife
 from riser import validity
@@ -99,7 +100,8 @@ def shifted_dynamics(dyn, s_shift: float):
 
 def solve_scene(scene: Scene, method: str, *, tolerance: float | None = None,
                 element_length: float | None = None, progress=None) -> SolveResult:
-    """Solve ``scene`` with ``method`` ('bvp' or 'vfife'). ``tolerance`` applies to the
+    """Solve ``scene`` with ``method`` ('bvp', 'vfife' or 'analytic', the closed form of a
+    single-section line without current, which takes no setting here). ``tolerance`` applies to the
     BVP (solve_bvp tolerance), ``element_length`` [m] to the VFIFE; each overrides the
     scene's setting and is validated like it. A VFIFE run of a Wang-form scene solves its
     :func:`vfife_equivalent`, says so in ``info['ends_conversion']`` and reports arc
@@ -114,6 +116,8 @@ def solve_scene(scene: Scene, method: str, *, tolerance: float | None = None,
     if method == "bvp":
         say("bvp: solving")
         return bvp.solve(scene, tolerance=tolerance)
+    if method == "analytic":
+        return analytic.solve(scene)
     if method != "vfife":
         raise ValueError(f"method must be one of {METHODS}, got {method!r}")
     if scene.ends.kind != "fixed":
