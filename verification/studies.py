@@ -17,7 +17,7 @@ from .study import Study
 
 #: study name -> its module, in the order ``reproduce all`` lists them
 STUDY_MODULES = {"wang2014": "verification.wang2014", "yu2021": "verification.yu2021",
-                 "liu2021": "verification.liu2021",
+                 "liu2021": "verification.liu2021", "kang2015": "verification.kang2015",
                  "compare": "verification.compare_report", "stress": "verification.stress",
                  "cost": "verification.cost", "modes": "verification.modes_study"}
 #: the study names (``riser-verify reproduce NAME``)
