@@ -236,3 +236,21 @@ def test_jlay_tension_too_small_is_no_equilibrium(tmp_path):
     path.write_text(builtin_paths()[KANG].read_text().replace("5.681e6", "4.0e6"))
     r = _cli("solve", str(path), "--method", "analytic", "--out", str(tmp_path / "o"))
     assert r.returncode == 1 and "no equilibrium" in r.stderr and "Traceback" not in r.stderr
+
+
+@pytest.mark.parametrize("table,key", [('[analytic]\nmodel = "exact"\n', "analytic.model"),
+                                       ("[analytic]\ncurvature_threshold = -1.0\n",
+                                        "analytic.curvature_threshold"),
+                                       ('[analytic]\nmodel = "piecewise"\n'
+                                        "curvature_threshold = 0.5\n",
+                                        "analytic.curvature_threshold")])
+def test_bad_analytic_settings_exit_2(table, key, tmp_path):
+    """A model that does not exist, a negative threshold (read with the scene), and a
+    threshold above the catenary's touchdown curvature w/H = 1.95e-3 1/m (the beam part
+    would be empty; refused once H is known, before the profile): one line naming the
+    key, exit 2."""
+    path = tmp_path / "bad.toml"
+    path.write_text(builtin_paths()[KANG].read_text() + "\n" + table)
+    r = _cli("solve", str(path), "--method", "analytic", "--out", str(tmp_path / "o"))
+    lines = [ln for ln in r.stderr.splitlines() if ln.strip()]
+    assert r.returncode == 2 and len(lines) == 1 and key in lines[0], r.stderr
