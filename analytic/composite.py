@@ -28,7 +28,7 @@ from riser.profile import Profile
 
 from .forms import Line, Outer
 from .catenary import bending_correction
-from .layers import anchor_layer, pinned_end_correction, touchdown_layer
+from .layers import anchor_layer, layer_length, pinned_end_correction, touchdown_layer
 
 #: stations per boundary-layer length, and the layer lengths they cover
 PER_LAYER = 20
@@ -52,7 +52,7 @@ def build(outer: Outer, line: Line, model: str, total: float, *, pinned_top: boo
     figures worth reporting (s_E of the piecewise model, the layer lengths)."""
     w, EI, EA, H = line.w, line.EI, line.EA, outer.H
     info: dict = {}
-    lam = math.sqrt(EI / ((1.0 + H / EA) * H))
+    lam = layer_length(EI, H, EA)
     layer = outer.layer
     if outer.kind == "touchdown" and model == "piecewise":
         sig_E = math.sqrt(max(w * H / threshold - H * H, 0.0)) / w
@@ -60,7 +60,7 @@ def build(outer: Outer, line: Line, model: str, total: float, *, pinned_top: boo
         info["piecewise_s_E"] = outer.s_L + end
         layer = touchdown_layer(H, w, EI, EA, line.k, end)
     T_top = float(outer.cat.tension(_sigma(outer, total)))
-    lam_top = math.sqrt(EI / ((1.0 + T_top / EA) * T_top))
+    lam_top = layer_length(EI, T_top, EA)
     dense = [(total, lam_top)]
     anchor = None
     if outer.kind == "touchdown":
@@ -71,7 +71,8 @@ def build(outer: Outer, line: Line, model: str, total: float, *, pinned_top: boo
             dense.append((0.0, anchor.length))
             info["anchor_layer_length"] = anchor.length
     else:
-        dense.append((0.0, math.sqrt(EI / float(outer.cat.tension(0.0)))))
+        lam0 = layer_length(EI, float(outer.cat.tension(0.0)), EA)     # the pinned anchor's
+        dense.append((0.0, lam0))
     s = stations(total, dense)
     c = 1.0 + H / EA
     x, y, th, ka, ka1, T, yo, ko = (np.zeros_like(s) for _ in range(8))
@@ -140,8 +141,6 @@ def build(outer: Outer, line: Line, model: str, total: float, *, pinned_top: boo
             th -= dth
             ka1 -= dk1
         if outer.kind == "free":
-            T0 = float(outer.cat.tension(0.0))
-            lam0 = math.sqrt(EI / ((1.0 + T0 / EA) * T0))
             dk, dth, dk1 = pinned_end_correction(s, float(ka[0]), lam0)
             ka += dk
             th += dth

@@ -33,7 +33,7 @@ from dataclasses import dataclass
 from scipy.optimize import brentq
 
 from .catenary import Catenary, bending_correction, vertex_length_for_height
-from .layers import TouchdownLayer, touchdown_layer
+from .layers import TouchdownLayer, layer_length, touchdown_layer
 
 
 class NoEquilibrium(Exception):
@@ -77,13 +77,11 @@ class Outer:
 
     @property
     def s_v(self) -> float:
-        return self.layer.s_v if self.layer is not None else 0.0
+        return _vertex(self.layer)[0]
 
     @property
     def y_v(self) -> float:
-        if self.layer is not None:
-            return self.layer.y_v
-        return 0.0
+        return _vertex(self.layer)[1]
 
 
 def _layer(line: Line, H: float, with_layer: bool, end=None):
@@ -153,7 +151,7 @@ def hang_off_angle(line: Line, height: float, alpha: float, with_layer: bool,
             return alpha
         cat = Catenary(H, 0.0, w, EA)
         T = float(cat.tension(L))
-        return alpha + float(cat.curvature(L)) * math.sqrt(line.EI / ((1.0 + T / EA) * T))
+        return alpha + float(cat.curvature(L)) * layer_length(line.EI, T, EA)
 
     def Lc(H, layer):
         # the outer angle at the top (with its bending correction) is alpha
@@ -233,7 +231,7 @@ def _fixed_touchdown(line: Line, anchor, hang_off, with_layer: bool) -> Outer:
         return lay, s_v, _length_for_height(line, H, Y - y_v, lay)
 
     def f(H, layer=True):
-        lay, s_v, Lc = parts(H, layer)
+        lay, _, Lc = parts(H, layer)
         return (1.0 + H / EA) * (L - Lc) + _top(line, H, Lc, lay)[0] - dx
 
     if L - Y <= 0.0 or f(1e-9 * w * L, False) > 0.0:

@@ -48,6 +48,12 @@ from dataclasses import dataclass
 import numpy as np
 
 
+def layer_length(EI: float, T: float, EA: float) -> float:
+    """The length [m] of a bending layer under effective tension T [N]:
+    sqrt(EI / ((1 + T/EA) T)) (lambda at the touchdown with T = H, lambda_e at an end)."""
+    return math.sqrt(EI / ((1.0 + T / EA) * T))
+
+
 @dataclass(frozen=True)
 class TouchdownLayer:
     """The touchdown layer of a line with horizontal force H [N], weight w [N/m], EI
@@ -78,7 +84,7 @@ class TouchdownLayer:
     @property
     def length(self) -> float:
         """lambda = sqrt(EI / (c H)) [m], the layer's length scale."""
-        return math.sqrt(self.EI / (self.c * self.H))
+        return layer_length(self.EI, self.H, self.EA)
 
     def correction(self, s: np.ndarray) -> tuple[np.ndarray, ...]:
         """y, y', y'', y''' of the correction C exp(-s/lambda) (+ B exp((s - end)/lambda)) at

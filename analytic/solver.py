@@ -34,6 +34,7 @@ from riser.settings import AnalyticSettings
 from . import forms
 from .composite import build
 from .forms import Line, NoEquilibrium, Unsupported
+from .layers import layer_length
 
 #: eps or delta above this gets a validity warning (the neglected terms are their squares)
 VALIDITY_LIMIT = 0.1
@@ -149,7 +150,7 @@ def solve(scene: Scene) -> SolveResult:
     profile, extra = build(outer, line, model, total, threshold=threshold)
     info.update(extra)
     H = outer.H
-    lam = math.sqrt(line.EI / ((1.0 + H / line.EA) * H))
+    lam = layer_length(line.EI, H, line.EA)
     info.update({"horizontal_tension": H, "boundary_layer_length": lam,
                  "suspended_length": outer.suspended,
                  "epsilon": lam / outer.suspended, "delta": line.w * lam / H})

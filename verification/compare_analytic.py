@@ -25,16 +25,14 @@ def third_column(matched, bvp_profile, s_shift: float, depth: float, rows: list[
 
     Returns (result or None, note): the note says why it does not apply, or what was
     solved."""
+    for r in rows:                           # empty unless it applies and converges
+        r["analytic"] = r["analytic_rel_diff"] = None
     try:
         res = analytic.solve(matched)
     except UnsupportedSceneError as exc:
         reason = str(exc).split(": ", 1)[-1]
-        for r in rows:
-            r["analytic"] = r["analytic_rel_diff"] = None
         return None, f"The analytic method does not apply to this scene ({reason})."
     if not res.converged:
-        for r in rows:
-            r["analytic"] = r["analytic_rel_diff"] = None
         return res, f"The analytic method ended in {res.status.value}: {res.message}."
     arows = {r["quantity"]: r for r in agreement(bvp_profile, shifted(res.profile, s_shift),
                                                  depth, nodal=False)}
