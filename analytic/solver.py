@@ -149,6 +149,10 @@ def solve(scene: Scene) -> SolveResult:
     total = line.length if scene.ends.kind in ("fixed", "tdp_tension") else outer.suspended
     profile, extra = build(outer, line, model, total, threshold=threshold)
     info.update(extra)
+    if model == "piecewise" and extra["piecewise_s_E"] >= total:
+        warnings.append(f"piecewise_threshold: curvature_threshold {threshold:g} 1/m is below "
+                        "the catenary's curvature everywhere: the switch point E lies beyond "
+                        "the hang-off, so no part of the line is the catenary")
     H = outer.H
     lam = layer_length(line.EI, H, line.EA)
     info.update({"horizontal_tension": H, "boundary_layer_length": lam,

@@ -254,3 +254,15 @@ def test_bad_analytic_settings_exit_2(table, key, tmp_path):
     r = _cli("solve", str(path), "--method", "analytic", "--out", str(tmp_path / "o"))
     lines = [ln for ln in r.stderr.splitlines() if ln.strip()]
     assert r.returncode == 2 and len(lines) == 1 and key in lines[0], r.stderr
+
+
+def test_piecewise_threshold_beyond_the_hang_off_warns():
+    """A threshold below the catenary's top curvature (w H / T_top^2 = 4.2e-5 1/m on
+    Kang's pipe) puts the switch point beyond the hang-off: named warning, no silent
+    model change; the default w/(2H) switches 528 m up the line, no warning."""
+    sc = resolve(KANG)
+    low = analytic.solve(sc.replace(analytic=AnalyticSettings(model="piecewise",
+                                                              curvature_threshold=1e-5)))
+    assert any(w.startswith("piecewise_threshold:") for w in low.warnings)
+    default = analytic.solve(sc.replace(analytic=AnalyticSettings(model="piecewise")))
+    assert not default.warnings and default.info["piecewise_s_E"] < default.profile.s[-1]
