@@ -130,12 +130,14 @@ def _comparison(rows, paper_rows=()):
 def test_agreement_csv_columns_are_the_contract():
     # agreement.csv is read by other tools (reports index): exactly these columns, in
     # this order, whatever extra keys the rows carry for the report; issue 16 appended the
-    # analytic method's two (empty where it does not apply), the first seven unchanged
+    # analytic method's two (empty where it does not apply), issue 17 MoorDyn's two (empty
+    # without --peer moordyn), the first seven unchanged
     from verification.compare import AGREEMENT_COLUMNS
     p = _line()
     comp = _comparison(agreement(p, _line(dx=0.1), depth=60.0))
     assert AGREEMENT_COLUMNS == ("quantity", "bvp", "vfife", "abs_diff", "rel_diff",
-                                 "tolerance", "pass", "analytic", "analytic_rel_diff")
+                                 "tolerance", "pass", "analytic", "analytic_rel_diff",
+                                 "moordyn", "moordyn_rel_diff")
     assert tuple(comp.frame().columns) == AGREEMENT_COLUMNS
 
 

@@ -176,9 +176,16 @@ def cmd_compare(args) -> int:
     scene = resolve(args.scene)
     out = _out(args, Path("out") / scene.name / "compare", outdir.COMPARE)
     _check_overrides(scene, args)
+    if args.peer:
+        from .peer_moordyn import require
+        require()                              # before solving: a clear message if missing
     with _progress(args, f"compare {scene.name}") as prog:
         comp = compare.compare(scene, element_length=args.element_length,
                                paper_model=not args.no_paper_model, progress=prog)
+        if args.peer:
+            from .compare_moordyn import peer_column
+            peer_column(comp, out / "moordyn", segment_length=args.peer_segment_length,
+                        progress=prog, agreement=compare.agreement)
     compare_report.write(comp, out)
     for r in comp.rows:
         flag = "ok  " if r["pass"] else "FAIL"
@@ -186,9 +193,13 @@ def cmd_compare(args) -> int:
         print(f"  {flag} {r['quantity']:<22} |diff| {r['abs_diff'] if r['abs_diff'] is not None else float('nan'):.6g} {rel}")
     if comp.analytic_note:
         print(f"  {comp.analytic_note}")
+    if comp.moordyn is not None:
+        from .compare_moordyn import summary_lines
+        print("\n".join(summary_lines(comp)))
     print(f"{scene.name}: {'PASS' if comp.passed else 'FAIL'}; wrote {out}/agreement.csv, report.md")
     warned = max(_warn(comp.bvp, args.strict), _warn(comp.vfife, args.strict))
-    return 0 if comp.passed and not warned else 1
+    peer_ok = comp.moordyn is None or comp.moordyn.converged
+    return 0 if comp.passed and not warned and peer_ok else 1
 
 
 #: most modes per plane the ``modes`` command computes (the BVP refines each one)
@@ -241,6 +252,9 @@ ANALYTIC_BENCH_SCENES = ("scr-steel", "kang2015-jlay")
 
 
 def cmd_bench(args) -> int:
+    if args.peer:
+        from .cli_moordyn import cmd_bench_peer
+        return cmd_bench_peer(args, _progress(args, "bench --peer moordyn"))
     from analytic.bench import median_times as analytic_times
     from bvp.bench import median_times as bvp_times
     from bvp.bench import run_bench as bvp_bench
@@ -323,6 +337,10 @@ def build_parser() -> argparse.ArgumentParser:
                         "line on a rigid seabed), which is not part of the verdict")
     s.add_argument("--strict", action="store_true",
                    help="exit 1 when either method's result carries warnings")
+    s.add_argument("--peer", choices=("moordyn",), help="add a peer code's profile as a "
+                   "further column (MoorDyn: the optional extra [moordyn]), not in the verdict")
+    s.add_argument("--peer-segment-length", type=float, default=10.0,
+                   help="MoorDyn segment length [m] (default 10)")
     s.set_defaults(func=cmd_compare)
     s = sub.add_parser("modes", help="natural modes about the static state, both methods")
     s.add_argument("scene", help="built-in scene name or path to a .toml scene file")
@@ -340,6 +358,8 @@ def build_parser() -> argparse.ArgumentParser:
     s.set_defaults(func=cmd_stress)
     s = sub.add_parser("bench", help="VFIFE kernel and solver benchmark")
     s.add_argument("--out", help="output directory (default reports/bench)")
+    s.add_argument("--peer", choices=("moordyn",), help="instead: VFIFE against a peer code "
+                   "on the same riser and mesh (moordyn.json; the optional extra [moordyn])")
     s.set_defaults(func=cmd_bench)
     s = sub.add_parser("cost", help="accuracy-versus-cost study of both methods on a scene")
     s.add_argument("scene", help="built-in scene name or path to a .toml scene file")
@@ -353,7 +373,9 @@ def build_parser() -> argparse.ArgumentParser:
                         "the VFIFE limit) and every relaxation setting; 6-10x the time (4-5 "
                         "min a built-in scene)")
     s.set_defaults(func=cmd_cost)
-    for name in ("solve", "compare", "modes", "stress", "cost", "reproduce"):   # after the command
+    from .cli_moordyn import add_parsers
+    add_parsers(sub)
+    for name in ("solve", "compare", "modes", "stress", "cost", "reproduce", "bench"):   # after the command
         sub.choices[name].add_argument("-q", "--quiet", action="store_true",
                                        default=argparse.SUPPRESS, help=QUIET_HELP)
     return p

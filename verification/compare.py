@@ -58,7 +58,7 @@ from .quantities import (curve_distance, match_feature, nodal_average,
 from .tolerances import tolerance, tolerance_value, unit
 
 AGREEMENT_COLUMNS = ("quantity", "bvp", "vfife", "abs_diff", "rel_diff", "tolerance", "pass",
-                     "analytic", "analytic_rel_diff")
+                     "analytic", "analytic_rel_diff", "moordyn", "moordyn_rel_diff")
 
 #: differences (and values) below this fraction of their basis are printed as 0: the
 #: solvers write their profiles with 10 significant digits, so nothing below ~1e-9 of a
@@ -176,6 +176,8 @@ class Comparison:
     notes: list[str] = field(default_factory=list)
     analytic: object = None
     analytic_note: str = ""
+    moordyn: object = None               # the MoorDyn peer (compare --peer moordyn)
+    moordyn_rows: list[dict] = field(default_factory=list)
 
     @property
     def passed(self) -> bool:

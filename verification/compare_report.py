@@ -15,6 +15,8 @@ from riser.errors import SolveFailed
 
 from .catalog import resolve
 from .compare import AGREEMENT_COLUMNS, ROUND_OFF, Comparison, compare, model_text
+from .compare_moordyn import moordyn_markdown
+from .compare_moordyn import write as moordyn_files
 from .pipeline import shifted
 from .quantities import nodal_average, signed_moment
 from .report import GENERATED_NOTE, fmt, md_table, new_figure, pct, save
@@ -32,6 +34,7 @@ def write(comp: Comparison, out_dir: str | Path) -> None:
         comp.analytic.write(out / "analytic")
     if comp.paper is not None and comp.paper.converged:
         comp.paper.write(out / "bvp_paper_model")
+    moordyn_files(comp, out)
     _plots(comp, out)
     (out / "report.md").write_text(report_markdown(comp))
 
@@ -151,6 +154,7 @@ def report_markdown(comp: Comparison, heading: str = "#") -> str:
     ]
     lines.append(_rows_table(comp.rows))
     lines += analytic_markdown(comp, heading)
+    lines += moordyn_markdown(comp, heading)
     if comp.paper is not None:
         lines += ["", f"{heading}# Paper model (limit), not part of the verdict", "",
                   "The same VFIFE run against the BVP in the paper model of Wang et al. (2014): "
@@ -178,7 +182,8 @@ def report_markdown(comp: Comparison, heading: str = "#") -> str:
               "![tension, moment, shear](forces.png)", "", "![differences](differences.png)", "",
               "Files: `agreement.csv` (columns " + ", ".join(f"`{c}`" for c in AGREEMENT_COLUMNS)
               + "; `rel_diff` is the signed relative difference above, `analytic_rel_diff` "
-              "the analytic method's, empty where it does not apply), `bvp/` and `vfife/` "
+              "the analytic method's, empty where it does not apply, `moordyn_rel_diff` MoorDyn's, "
+              "empty without `--peer moordyn`), `bvp/` and `vfife/` "
               "(each `profile.csv`, `summary.json`, in the solved scene's arc length)"
               + (", `bvp_paper_model/`" if comp.paper is not None and comp.paper.converged
                  else "") + ".", ""]
@@ -221,12 +226,15 @@ def _plots(comp: Comparison, out: Path) -> None:
     pp = comp.paper.profile if comp.paper is not None and comp.paper.converged else None
     ap = (shifted(comp.analytic.profile, comp.s_shift)
           if comp.analytic is not None and comp.analytic.converged else None)
+    mp = comp.moordyn.profile if comp.moordyn is not None else None
     fig, axes = new_figure(1, 1, (9, 5))
     ax = axes[0, 0]
     ax.plot(bp.x, bp.y, "-", lw=2.0, label="BVP")
     ax.plot(vp.x, vp.y, "--", lw=1.2, label="VFIFE")
     if ap is not None:
         ax.plot(ap.x, ap.y, "-.", lw=1.0, label="analytic")
+    if mp is not None:
+        ax.plot(mp.x, mp.y, ".", ms=2.5, label="MoorDyn (nodes)")
     if pp is not None:
         ax.plot(pp.x, pp.y, ":", lw=1.0, color="0.4", label="BVP paper model")
     ax.set_xlabel("x [m]")
@@ -242,6 +250,8 @@ def _plots(comp: Comparison, out: Path) -> None:
         ax.plot(vp.s, getattr(vp, key) / 1e3, "--", lw=1.2, label="VFIFE")
         if ap is not None:
             ax.plot(ap.s, getattr(ap, key) / 1e3, "-.", lw=1.0, label="analytic")
+        if mp is not None and key != "shear":
+            ax.plot(mp.s, getattr(mp, key) / 1e3, ".", ms=2.5, label="MoorDyn (nodes)")
         if pp is not None:
             ax.plot(pp.s, getattr(pp, key) / 1e3, ":", lw=1.0, color="0.4",
                     label="BVP paper model")

@@ -26,7 +26,9 @@ SOLVE = ("profile.csv", "summary.json", "timeseries.csv", "envelope.csv", "state
 #: one solve folder per method
 COMPARE = ("agreement.csv", "report.md", "configurations.png", "forces.png", "differences.png",
            *(f"{sub}/{name}" for sub in ("bvp", "vfife", "analytic", "bvp_paper_model")
-             for name in SOLVE))
+             for name in SOLVE),
+           *(f"moordyn/{name}" for name in ("deck.dat", "deck.out", "current_profile.txt",
+                                            "moordyn.log", "agreement.csv", "profile.csv")))
 #: ``cost`` (and each scene folder of ``reproduce cost``)
 COST = ("runs.csv", "values.csv", "report.md", "error_vs_time.png",
         "error_vs_element_length.png", "time_vs_elements.png", "dynamics.csv",
@@ -38,6 +40,8 @@ MODES = ("modes.csv", "agreement.csv", "report.md", "mode_shapes_in_plane.png",
 STRESS = ("summary.csv", "report.md")
 #: ``bench``
 BENCH = ("bench.json",)
+#: ``bench --peer moordyn`` (beside bench.json, which it leaves alone)
+BENCH_PEER = ("moordyn.json",)
 #: the files of each study of ``reproduce`` in its folder (compare and cost: in each
 #: unit's subfolder ``NAME/SCENE``)
 STUDY_FILES = {

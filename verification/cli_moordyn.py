@@ -1,0 +1,78 @@
+"""The MoorDyn commands of the command line (``import-moordyn``, ``export-moordyn``,
+``bench --peer moordyn``); :mod:`verification.cli` parses their arguments and calls them.
+Bad input raises :class:`~riser.errors.SceneError` (a deck error names the deck line),
+which the command line prints as one line with exit 2."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from riser.errors import SceneError
+
+from . import outdir
+from .catalog import resolve
+
+
+def cmd_import_moordyn(args) -> int:
+    """``riser-verify import-moordyn DECK [--out SCENE.toml]``."""
+    from riser.moordyn_import import import_deck
+    deck = Path(args.deck)
+    out = Path(args.out) if args.out else deck.with_suffix(".toml")
+    text, scene, notes = import_deck(deck, name=out.stem if args.out else None)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text(text)
+    for n in notes:
+        print(f"  {n}")
+    print(f"{deck.name}: {len(scene.segments)} segment(s), {scene.total_length:g} m; wrote {out}")
+    return 0
+
+
+def cmd_export_moordyn(args) -> int:
+    """``riser-verify export-moordyn SCENE [--out DECK] [--segment-length H]``."""
+    from .moordyn_io import export
+    if args.segment_length is not None and not 0.01 <= args.segment_length <= 1000.0:
+        raise SceneError("command line", "--segment-length", "must be between 0.01 and 1000 "
+                         f"m, got {args.segment_length:g}")
+    scene = resolve(args.scene)
+    path = Path(args.out) if args.out else Path("out") / scene.name / "moordyn" / f"{scene.name}.dat"
+    files = export(scene, path, segment_length=args.segment_length)
+    ex = files.export
+    lines = ", ".join(f"{ln.length:g} m x {ln.segments}" for ln in ex.deck.lines)
+    print(f"{scene.name}: {len(ex.deck.lines)} MoorDyn line(s) ({lines} segments), free "
+          f"points from {files.joints_from}; wrote {files.deck_path}"
+          + (f" and {files.profile_path}" if files.profile_path else ""))
+    return 0
+
+
+def cmd_bench_peer(args, progress) -> int:
+    """``riser-verify bench --peer moordyn``: reports/bench/moordyn.json."""
+    from . import bench_moordyn, wang2014
+    from .peer_moordyn import require
+    require()
+    out = Path(args.out) if args.out else Path("reports") / "bench"
+    outdir.clear(out, outdir.BENCH_PEER)
+    out.mkdir(parents=True, exist_ok=True)
+    with progress as prog:
+        b = bench_moordyn.run(wang2014.bench_scene(), log=prog.log)
+    (out / "moordyn.json").write_text(json.dumps(b, indent=2) + "\n")
+    for line in bench_moordyn.summary_lines(b):
+        print(line)
+    print(f"wrote {out}/moordyn.json")
+    return 0
+
+
+def add_parsers(sub) -> None:
+    """The import-moordyn and export-moordyn subcommands."""
+    s = sub.add_parser("import-moordyn", help="a MoorDyn v2 deck -> a scene file")
+    s.add_argument("deck", help="MoorDyn v2 input file (current_profile.txt beside it if "
+                   "Currents = 1)")
+    s.add_argument("--out", help="scene file to write (default: the deck's name with .toml)")
+    s.set_defaults(func=cmd_import_moordyn)
+    s = sub.add_parser("export-moordyn", help="a scene -> a MoorDyn v2 deck")
+    s.add_argument("scene", help="built-in scene name or path to a .toml scene file")
+    s.add_argument("--out", help="deck to write (default out/SCENE/moordyn/SCENE.dat); "
+                   "current_profile.txt goes beside it")
+    s.add_argument("--segment-length", type=float,
+                   help="MoorDyn segment length [m] (default: the scene's VFIFE element length)")
+    s.set_defaults(func=cmd_export_moordyn)
