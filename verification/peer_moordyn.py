@@ -237,26 +237,25 @@ def _settle(moordyn, system, lines, scene, files, info, limit, log, now):
     info["dynamic_step_s"] = STEP_FRACTION * dt0
     t, chunk = 0.0, 1.0
     t0 = time.perf_counter()
-    with _to_log(log):
-        moordyn.SetVerbosity(system, moordyn.LEVEL_ERR)
-        while t < limit:
-            try:
+    while t < limit:
+        try:
+            with _to_log(log):          # MoorDyn's prints; the progress line stays on stderr
                 moordyn.Step(system, [], [], t, chunk)
-            except RuntimeError as exc:
-                return Status.DIVERGED, f"MoorDyn diverged in the current at t = {t:g} s ({exc})"
-            t += chunk
-            speed = max(float(np.max(np.linalg.norm(
-                [moordyn.GetLineNodeVel(ln, i) for i in range(moordyn.GetLineN(ln) + 1)],
-                axis=1))) for ln in lines)
-            if int(t) % 20 == 0:
-                now(f"moordyn: settling in the current, t = {t:g} s, max speed "
-                    f"{speed:.2g} m/s", fraction=t / limit)
-            if speed < SPEED_TOL:
-                res = _residual(moordyn, lines, scene, files)
-                if res <= RESIDUAL_TOL:
-                    info.update(settle_sim_s=t, settle_wall_s=time.perf_counter() - t0,
-                                force_residual=res, settle_speed=speed)
-                    return Status.CONVERGED, ""
+        except RuntimeError as exc:
+            return Status.DIVERGED, f"MoorDyn diverged in the current at t = {t:g} s ({exc})"
+        t += chunk
+        speed = max(float(np.max(np.linalg.norm(
+            [moordyn.GetLineNodeVel(ln, i) for i in range(moordyn.GetLineN(ln) + 1)],
+            axis=1))) for ln in lines)
+        if int(t) % 20 == 0:
+            now(f"moordyn: settling in the current, t = {t:g} s, max speed "
+                f"{speed:.2g} m/s", fraction=t / limit)
+        if speed < SPEED_TOL:
+            res = _residual(moordyn, lines, scene, files)
+            if res <= RESIDUAL_TOL:
+                info.update(settle_sim_s=t, settle_wall_s=time.perf_counter() - t0,
+                            force_residual=res, settle_speed=speed)
+                return Status.CONVERGED, ""
     info.update(settle_sim_s=t, settle_wall_s=time.perf_counter() - t0)
     return Status.NOT_CONVERGED, (f"MoorDyn still moved after {limit:g} s simulated in the "
                                   f"current (max node speed {speed:.2g} m/s, stop at "
