@@ -100,7 +100,7 @@ def export_scene(scene: Scene, *, segment_length: float | None = None,
     """
     _check(scene)
     props = segment_properties(scene)
-    h = float(segment_length or scene.vfife.element_length)
+    h = float(scene.vfife.element_length if segment_length is None else segment_length)
     depth = scene.water_depth if scene.water_depth is not None else scene.ends.hang_off[1]
     notes = [*notes, "Written by riser-verify export-moordyn. Coordinates: X = the scene's x, Z = y - "
              f"WtrDpth (seabed at Z = {-depth:g} m), Y = -z.",

@@ -253,6 +253,13 @@ def test_cli_round_trip(tmp_path, capsys):
     assert read_deck(deck).lines[0].segments == 40
     assert main(["export-moordyn", "scr-steel", "--segment-length", "0"]) == 2
     assert "--segment-length" in capsys.readouterr().err
+    # fewer than ten segments over the 2000 m line, or none: refused before solving
+    assert main(["export-moordyn", "scr-steel", "--segment-length", "500"]) == 2
+    assert main(["compare", "scr-steel", "--peer", "moordyn", "--peer-segment-length", "0",
+                 "--out", str(tmp_path / "c")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 2 and all("must be between 0.01 and 200 m" in e for e in err)
+    assert not (tmp_path / "c" / "agreement.csv").exists()
     assert parse_deck(GOOD).options["wtrdpth"][0] == "1000.0"
     with pytest.raises(DeckError, match="line 4: section 'Points' appears twice"):
         parse_deck("---- POINTS ----\nh\nh\n---- POINTS ----\n")

@@ -177,7 +177,9 @@ def cmd_compare(args) -> int:
     out = _out(args, Path("out") / scene.name / "compare", outdir.COMPARE)
     _check_overrides(scene, args)
     if args.peer:
+        from .cli_moordyn import check_segment_length
         from .peer_moordyn import require
+        check_segment_length(args.peer_segment_length, "--peer-segment-length", scene)
         require()                              # before solving: a clear message if missing
     with _progress(args, f"compare {scene.name}") as prog:
         comp = compare.compare(scene, element_length=args.element_length,

@@ -28,13 +28,23 @@ def cmd_import_moordyn(args) -> int:
     return 0
 
 
+def check_segment_length(value: float | None, option: str, scene) -> None:
+    """A MoorDyn segment length from the command line [m]: 0.01-1000 m and at least ten
+    segments over the line (MoorDyn's tolerances are stated per segment length)."""
+    if value is None:
+        return
+    top = min(1000.0, scene.total_length / 10.0)
+    if not 0.01 <= value <= top:
+        raise SceneError("command line", option, f"must be between 0.01 and {top:g} m (at "
+                         f"least ten segments over the {scene.total_length:g} m line), got "
+                         f"{value:g}")
+
+
 def cmd_export_moordyn(args) -> int:
     """``riser-verify export-moordyn SCENE [--out DECK] [--segment-length H]``."""
     from .moordyn_io import export
-    if args.segment_length is not None and not 0.01 <= args.segment_length <= 1000.0:
-        raise SceneError("command line", "--segment-length", "must be between 0.01 and 1000 "
-                         f"m, got {args.segment_length:g}")
     scene = resolve(args.scene)
+    check_segment_length(args.segment_length, "--segment-length", scene)
     path = Path(args.out) if args.out else Path("out") / scene.name / "moordyn" / f"{scene.name}.dat"
     files = export(scene, path, segment_length=args.segment_length)
     ex = files.export

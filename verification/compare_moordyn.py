@@ -103,15 +103,13 @@ def peer_column(comp, folder: Path, *, segment_length: float = 10.0,
         if r["quantity"] in vf:
             vf[r["quantity"]]["moordyn"] = r["vfife"]
             vf[r["quantity"]]["moordyn_rel_diff"] = r.get("rel_diff")
-    info = peer.info
-    for name, key in (("hang_off_segment_tension", "hang_off_end_segment_tension"),):
-        b = bp.tension[-1]
-        comp.moordyn_rows.append({
-            "quantity": name, "unit": "N", "bvp": float(b), "vfife": None,
-            "moordyn": info[key], "diff": info[key] - b, "rel_diff": (info[key] - b) / b,
-            "at_s": None, "basis_label": "itself", "tolerance": None, "tol_label": "",
-            "pass": None, "reason": "the last segment's tension (GetLineFairTen), half a "
-            "segment below the end: shown, not assessed"})
+    b, seg = float(bp.tension[-1]), peer.info["hang_off_end_segment_tension"]
+    comp.moordyn_rows.append({
+        "quantity": "hang_off_segment_tension", "unit": "N", "bvp": b, "vfife": None,
+        "moordyn": seg, "diff": seg - b, "rel_diff": (seg - b) / b, "at_s": None,
+        "basis_label": "itself", "tolerance": None, "tol_label": "", "pass": None,
+        "reason": "the last segment's tension (GetLineFairTen), half a segment below the "
+        "end: shown, not assessed"})
     return peer
 
 
