@@ -179,7 +179,7 @@ def test_the_lists_cover_every_committed_report():
     lists = {"wang2014": outdir.STUDY_FILES["wang2014"], "yu2021": outdir.STUDY_FILES["yu2021"],
              "liu2021": outdir.STUDY_FILES["liu2021"], "kang2015": outdir.STUDY_FILES["kang2015"],
              "stress": outdir.STRESS,
-             "bench": outdir.BENCH + outdir.BENCH_PEER}
+             "bench": outdir.BENCH + outdir.BENCH_PEER + outdir.BENCH_SWEEP}
     for name, names in lists.items():
         for p in (rep / name).rglob("*"):
             if p.is_file():

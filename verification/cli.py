@@ -11,9 +11,7 @@ key, or a scene the method cannot represent, refused before solving).
 from __future__ import annotations
 
 import argparse
-import concurrent.futures as cf
 import json
-import multiprocessing as mp
 import os
 import sys
 import time
@@ -122,8 +120,9 @@ def cmd_solve(args) -> int:
 
 
 def cmd_reproduce(args) -> int:
+    from .engine import Engine
     from .index import write_index
-    from .studies import WORKER_ENV, run_unit, study, units
+    from .studies import run_unit, study, units
     base = Path(args.out) if args.out else None
 
     def out_of(study_name: str) -> str:
@@ -140,29 +139,24 @@ def cmd_reproduce(args) -> int:
             f"{jobs - 1} more worker process(es) on this {os.cpu_count()}-core machine; run "
             "`riser-verify cost SCENE` alone for uncontended timings." if jobs > 1 else "")
     # progress: units done, weighted by the studies' declared seconds; the units' own
-    # output is printed above the status line
+    # output is printed above the status line. The units run on the sweep's engine.
     track = UnitTracker([study(n).unit_seconds(u, args.full) for n, u in todo], jobs)
+    failed = []
     with _progress(args, f"reproduce {args.name}") as prog:
         prog.source = track
-        if jobs == 1:
-            for i, u in enumerate(todo):
-                with prog.capture():
-                    line = run_unit(*u, out_of(u[0]), note, args.full)
-                prog.log(line)
-                track.done(i)
-        else:
-            for key, value in WORKER_ENV.items():   # before the workers start (spawn)
-                os.environ.setdefault(key, value)
-            ctx = mp.get_context("spawn")
-            with cf.ProcessPoolExecutor(max_workers=jobs, mp_context=ctx,
-                                        **prog.worker_options(ctx)) as pool:
-                futures = [pool.submit(run_unit, *u, out_of(u[0]), note, args.full)
-                           for u in todo]
-                for f in cf.as_completed(futures):
-                    prog.log(f.result())
-                    track.done(futures.index(f))
+        work = [(*u, out_of(u[0]), note, args.full) for u in todo]
+        for i, out in Engine(jobs).map(run_unit, work, prog):
+            if isinstance(out, BaseException):      # the others go on; said at the end
+                failed.append(f"{todo[i][0]} {todo[i][1] or ''}".strip() + f": {out}")
+                out = f"{failed[-1]} (FAILED)"
+            prog.log(out)
+            track.done(i)
     print(f"reproduce {args.name}: {len(todo)} unit(s) in {time.perf_counter() - t0:.0f} s "
           f"with {jobs} process(es)")
+    for line in failed:
+        _err(line)
+    if failed:
+        return 1
     if base is None:
         print(f"index: {write_index(Path('reports'))}")
     elif args.name == "all":
@@ -257,6 +251,9 @@ def cmd_bench(args) -> int:
     if args.peer:
         from .cli_moordyn import cmd_bench_peer
         return cmd_bench_peer(args, _progress(args, "bench --peer moordyn"))
+    if args.sweep:
+        from .bench_sweep import cmd_bench_sweep
+        return cmd_bench_sweep(args, _progress(args, "bench --sweep"))
     from analytic.bench import median_times as analytic_times
     from bvp.bench import median_times as bvp_times
     from bvp.bench import run_bench as bvp_bench
@@ -362,6 +359,9 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--out", help="output directory (default reports/bench)")
     s.add_argument("--peer", choices=("moordyn",), help="instead: VFIFE against a peer code "
                    "on the same riser and mesh (moordyn.json; the optional extra [moordyn])")
+    s.add_argument("--sweep", nargs="?", const="scr-envelope", help="instead: sweep "
+                   "throughput (cases per minute) with 1 and 2 local workers and a local Dask "
+                   "cluster of 2 workers (sweep.json; default: the built-in sweep scr-envelope)")
     s.set_defaults(func=cmd_bench)
     s = sub.add_parser("cost", help="accuracy-versus-cost study of both methods on a scene")
     s.add_argument("scene", help="built-in scene name or path to a .toml scene file")
@@ -375,9 +375,10 @@ def build_parser() -> argparse.ArgumentParser:
                         "the VFIFE limit) and every relaxation setting; 6-10x the time (4-5 "
                         "min a built-in scene)")
     s.set_defaults(func=cmd_cost)
-    from .cli_moordyn import add_parsers
-    add_parsers(sub)
-    for name in ("solve", "compare", "modes", "stress", "cost", "reproduce", "bench"):   # after the command
+    from . import cli_moordyn, cli_sweep
+    cli_moordyn.add_parsers(sub)
+    cli_sweep.add_parsers(sub)
+    for name in ("solve", "compare", "modes", "stress", "cost", "reproduce", "bench", "sweep"):   # after the command
         sub.choices[name].add_argument("-q", "--quiet", action="store_true",
                                        default=argparse.SUPPRESS, help=QUIET_HELP)
     return p

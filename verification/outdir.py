@@ -42,6 +42,8 @@ STRESS = ("summary.csv", "report.md")
 BENCH = ("bench.json",)
 #: ``bench --peer moordyn`` (beside bench.json, which it leaves alone)
 BENCH_PEER = ("moordyn.json",)
+#: ``bench --sweep``: the sweep throughput of the engines
+BENCH_SWEEP = ("sweep.json",)
 #: the files of each study of ``reproduce`` in its folder (compare and cost: in each
 #: unit's subfolder ``NAME/SCENE``)
 STUDY_FILES = {

@@ -22,13 +22,6 @@ STUDY_MODULES = {"wang2014": "verification.wang2014", "yu2021": "verification.yu
                  "cost": "verification.cost", "modes": "verification.modes_study"}
 #: the study names (``riser-verify reproduce NAME``)
 STUDIES = tuple(STUDY_MODULES)
-#: environment of the worker processes of ``reproduce --jobs N`` (N > 1), unless already
-#: set: one BLAS thread each, the workers being the parallelism (the OpenBLAS threads of
-#: ``solve_bvp`` compete with the other worker: ``reproduce all`` on 2 cores took 317 s
-#: and 536 s of CPU with them, 308 s and 513 s without, with the same numbers)
-WORKER_ENV = {"OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
-
-
 def study(name: str) -> Study:
     """The study ``name`` (its module's ``STUDY``)."""
     return importlib.import_module(STUDY_MODULES[name]).STUDY

@@ -1,0 +1,203 @@
+"""``riser-verify sweep --scheduler``: the same sweep on a real local Dask cluster (a
+scheduler and two single-threaded workers started by the test through the dask command
+line, :func:`verification.dask_local.local_cluster`) gives the same numbers as in this
+process; an address that does not answer fails in one line before anything is written;
+a Dask run resumes a folder of a local run.
+
+Needs the optional extra ``[cluster]`` (dask.distributed), except the check of the
+message given when it is missing. About 30 s, most of it the two sweeps of 4 cases.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import os
+import shutil
+import socket
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from verification.engine import EngineError, require_dask
+
+try:
+    import distributed
+except ImportError:
+    distributed = None
+
+needs_dask = pytest.mark.skipif(distributed is None, reason="the optional extra [cluster] "
+                                "(dask.distributed) is not installed")
+ROOT = Path(__file__).resolve().parents[1]
+
+#: 2 hang-off offsets x 2 currents of the steel catenary riser: 4 cases of ~1-2 s each
+SWEEP = """\
+base = "scr-steel"
+methods = ["bvp", "vfife"]
+
+[set]
+"environment.current.heights" = [0.0, 1000.0]
+
+[[vary]]
+key = "ends.hang_off"
+values = [[1450.0, 1000.0], [1550.0, 1000.0]]
+
+[[vary]]
+key = "environment.current.speeds"
+values = [[0.0, 0.0], [0.0, 1.0]]
+"""
+CASES = 4
+
+
+def _cli(argv: list[str], connect_timeout_s: float | None = None):
+    """``riser-verify ARGV`` in a fresh Python (what a user sees on stderr, logging of
+    distributed included), optionally with a shorter scheduler connection timeout."""
+    code = ("import sys, verification.engine as e\n"
+            + (f"e.CONNECT_TIMEOUT_S = {connect_timeout_s!r}\n" if connect_timeout_s else "")
+            + "from verification.cli import main\nsys.exit(main(sys.argv[1:]))\n")
+    p = subprocess.run([sys.executable, "-c", code, *argv], cwd=ROOT, capture_output=True,
+                       text=True, timeout=120)
+    return p.returncode, p.stdout, p.stderr
+
+
+def _rows(path: Path) -> list[dict]:
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def _workers(out: Path) -> list[str]:
+    """The ``worker`` (host:pid) of each case's case.json."""
+    return [json.loads(p.read_text())["worker"]
+            for p in sorted((out / "cases").glob("*/case.json"))]
+
+
+@pytest.fixture(scope="module")
+def sweep_file(tmp_path_factory) -> Path:
+    path = tmp_path_factory.mktemp("sweep") / "small.toml"
+    path.write_text(SWEEP)
+    return path
+
+
+@pytest.fixture(scope="module")
+def local_run(sweep_file, tmp_path_factory):
+    """The sweep in this process (``--jobs 1``): (exit code, output folder)."""
+    from verification.cli import main
+    out = tmp_path_factory.mktemp("local") / "out"
+    return main(["sweep", str(sweep_file), "--jobs", "1", "--out", str(out), "-q"]), out
+
+
+@pytest.fixture(scope="module")
+def cluster():
+    """The address of a local scheduler with two workers, stopped after the module."""
+    from verification.dask_local import local_cluster
+    with local_cluster(workers=2) as address:
+        yield address
+
+
+# ------------------------------------------------------------------ without the extra
+def test_missing_distributed_says_how_to_install_it(monkeypatch, run_cli, sweep_file,
+                                                    tmp_path):
+    monkeypatch.setitem(sys.modules, "distributed", None)     # import distributed fails
+    with pytest.raises(EngineError) as exc:
+        require_dask()
+    msg = str(exc.value)
+    assert "[cluster]" in msg and "pip install" in msg and "\n" not in msg
+    out = tmp_path / "out"
+    code, _, err = run_cli(["sweep", str(sweep_file), "--scheduler", "tcp://127.0.0.1:9",
+                            "--out", str(out)])
+    assert code == 1
+    assert err.splitlines() == [f"error: {msg}"]
+    assert not out.exists()
+
+
+def test_jobs_and_scheduler_together_are_refused(run_cli, sweep_file, tmp_path):
+    out = tmp_path / "out"
+    code, _, err = run_cli(["sweep", str(sweep_file), "--jobs", "2", "--scheduler",
+                            "tcp://127.0.0.1:9", "--out", str(out)])
+    assert code == 2
+    lines = err.splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error:") and "--jobs" in lines[0]
+    assert not out.exists()
+
+
+# ------------------------------------------------------------------ addresses that fail
+@needs_dask
+def test_a_scheduler_that_does_not_answer_fails_in_one_line(sweep_file, tmp_path):
+    with socket.socket() as s:                 # a port nothing listens on
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    address = f"tcp://127.0.0.1:{port}"
+    out = tmp_path / "out"
+    code, stdout, err = _cli(["sweep", str(sweep_file), "--scheduler", address, "--out",
+                              str(out)], connect_timeout_s=2.0)
+    assert code == 1, err
+    lines = err.splitlines()
+    assert len(lines) == 1, err
+    assert lines[0].startswith("error:") and address in lines[0]
+    assert "does not answer" in lines[0]
+    assert not out.exists() and stdout == ""
+
+
+@needs_dask
+@pytest.mark.parametrize("address, says", [
+    ("localhost:8786", "'localhost:8786' is not a scheduler address"),   # no protocol
+    ("tcp://127.0.0.1", "missing port"),                                  # no port
+])
+def test_a_malformed_address_fails_in_one_line(sweep_file, tmp_path, address, says):
+    out = tmp_path / "out"
+    code, stdout, err = _cli(["sweep", str(sweep_file), "--scheduler", address,
+                              "--out", str(out)], connect_timeout_s=2.0)
+    assert code == 1, err
+    lines = err.splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error:"), err
+    assert address in lines[0] and says in lines[0]
+    assert not out.exists() and stdout == ""
+
+
+# ------------------------------------------------------------------ on a real cluster
+@needs_dask
+def test_a_dask_run_gives_the_numbers_of_a_local_run(local_run, cluster, sweep_file,
+                                                     tmp_path, run_cli):
+    local_code, local = local_run
+    out = tmp_path / "dask"
+    code, stdout, err = run_cli(["sweep", str(sweep_file), "--scheduler", cluster,
+                                 "--out", str(out), "-q"])
+    assert code == local_code and code in (0, 1), err
+    assert f"ran {CASES} case(s)" in stdout
+    for name in ("cases.csv", "envelopes.csv"):
+        a, b = _rows(local / name), _rows(out / name)
+        assert len(a) == len(b) > 0, name
+        for ra, rb in zip(a, b):
+            ra.pop("wall_time_s", None)
+            rb.pop("wall_time_s", None)
+            assert ra == rb, (name, ra["case"] if "case" in ra else ra.get("s"))
+    rows = _rows(out / "cases.csv")
+    assert len(rows) == 2 * CASES and {r["status"] for r in rows} == {"converged"}
+    report = (out / "report.md").read_text()
+    assert f"on Dask cluster at {cluster} (2 worker(s))" in report
+    # each case ran in a worker process, not here; both workers took cases: the
+    # scheduler gives a task to each idle worker at once (the cases are submitted
+    # together, both workers registered before), and work stealing moves only tasks
+    # that have not started, so each worker runs at least its first case
+    pids = {w.rsplit(":", 1)[1] for w in _workers(out)}
+    assert str(os.getpid()) not in pids
+    assert len(pids) == 2, _workers(out)
+    assert {w.rsplit(":", 1)[1] for w in _workers(local)} == {str(os.getpid())}
+
+
+@needs_dask
+def test_a_dask_run_resumes_a_local_run(local_run, cluster, sweep_file, tmp_path, run_cli):
+    _, local = local_run
+    out = tmp_path / "resumed"
+    shutil.copytree(local, out)
+    before = {p: p.read_text() for p in (out / "cases").glob("*/case.json")}
+    code, stdout, err = run_cli(["sweep", str(sweep_file), "--scheduler", cluster,
+                                 "--out", str(out), "-q"])
+    assert code in (0, 1), err
+    assert "ran 0 case(s)" in stdout and f"{CASES} skipped" in stdout
+    assert {p: p.read_text() for p in (out / "cases").glob("*/case.json")} == before
+    assert "nothing ran now" in (out / "report.md").read_text()
+    a, b = _rows(local / "cases.csv"), _rows(out / "cases.csv")
+    assert a == b                              # timings included: read from the cases
