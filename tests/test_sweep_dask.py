@@ -82,10 +82,17 @@ def sweep_file(tmp_path_factory) -> Path:
 
 @pytest.fixture(scope="module")
 def local_run(sweep_file, tmp_path_factory):
-    """The sweep in this process (``--jobs 1``): (exit code, output folder)."""
-    from verification.cli import main
-    out = tmp_path_factory.mktemp("local") / "out"
-    return main(["sweep", str(sweep_file), "--jobs", "1", "--out", str(out), "-q"]), out
+    """The sweep run locally (``--jobs 1``) in a fresh process: (exit code, output folder).
+    A first run fills Numba's cache, so that this run and the Dask workers execute the same
+    cached kernels: a kernel compiled afresh and the same kernel loaded from the cache give
+    VFIFE results that differ by ~3e-9 (measured: 15958.3726293 against 15958.3725783 N m
+    on an SCR case), which a cold cache at the start of a test session would show here."""
+    base = tmp_path_factory.mktemp("local")
+    for name in ("prime", "out"):
+        code, _, err = _cli(["sweep", str(sweep_file), "--jobs", "1", "--out",
+                             str(base / name), "-q"])
+        assert code in (0, 1), err
+    return code, base / "out"
 
 
 @pytest.fixture(scope="module")
@@ -184,7 +191,8 @@ def test_a_dask_run_gives_the_numbers_of_a_local_run(local_run, cluster, sweep_f
     pids = {w.rsplit(":", 1)[1] for w in _workers(out)}
     assert str(os.getpid()) not in pids
     assert len(pids) == 2, _workers(out)
-    assert {w.rsplit(":", 1)[1] for w in _workers(local)} == {str(os.getpid())}
+    local_pids = {w.rsplit(":", 1)[1] for w in _workers(local)}   # --jobs 1: its process
+    assert len(local_pids) == 1 and str(os.getpid()) not in local_pids
 
 
 @needs_dask
@@ -201,3 +209,25 @@ def test_a_dask_run_resumes_a_local_run(local_run, cluster, sweep_file, tmp_path
     assert "nothing ran now" in (out / "report.md").read_text()
     a, b = _rows(local / "cases.csv"), _rows(out / "cases.csv")
     assert a == b                              # timings included: read from the cases
+
+
+# ------------------------------------------------------------------ throughput (slow)
+@needs_dask
+@pytest.mark.slow
+@pytest.mark.skipif((os.cpu_count() or 1) < 2, reason="throughput with 2 workers needs 2 cores")
+def test_two_workers_raise_the_throughput_on_every_engine():
+    # riser-verify bench --sweep on the built-in scr-envelope (12 cases of ~1.6 s): two
+    # workers must beat one on both engines. The bound 1.3x is well below the 1.74x (local)
+    # and 1.57x (Dask) measured on an idle 2-core machine, because a loaded CI machine
+    # shares its cores; the ideal is 2x and nothing here can exceed it by more than noise.
+    from verification.bench_sweep import measure
+    from verification.progress import Progress
+    from verification.sweep_file import load_sweep
+    with Progress("bench --sweep", quiet=True) as prog:
+        b = measure(load_sweep("scr-envelope"), prog)
+    e = b["engines"]
+    assert all(e[k]["cases_run"] == 12 and e[k]["cases_failed"] == 0
+               for k in ("local_1", "local_2", "dask_2"))
+    assert e["local_2"]["speed_up"] > 1.3 and e["dask_2"]["speed_up"] > 1.3
+    assert e["local_2"]["speed_up"] < 2.2 and e["dask_2"]["speed_up"] < 2.2
+    assert 0.0 < b["dask_overhead"]["ms_per_task"] < 100.0   # a scheduler, not a timeout

@@ -347,6 +347,11 @@ def _case(sweep: Sweep, base_dict: dict, index: int, pick: tuple) -> Case:
     try:
         scene = scene_from_dict(data, f"case {index}")
     except SceneError as exc:
+        fixed = next((k for k in sweep.fixed if exc.key == k or exc.key.startswith(k + ".")
+                      or exc.key.startswith(k + "[")), None)
+        if fixed is not None and fixed not in values:   # a [set] value, the same in every case
+            raise SceneError(sweep.source, f'set."{fixed}"', f"{exc.key}: {exc.message}") \
+                from None
         given = ", ".join(f"{k} = {json.dumps(x, default=str)}" for k, x in values.items())
         hint = ""
         if "required key is missing" in exc.message and exc.key.rsplit(".", 1)[0] in \
