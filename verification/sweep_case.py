@@ -154,9 +154,8 @@ def write_case(out: Path, record: dict, scene_text: str | None = None) -> None:
     if scene_text is not None:
         (folder / "scene.toml").write_text(scene_text)
     profiles = {m: d.get("profile") for m, d in record["methods"].items()}
-    meta = json.loads(json.dumps({**record, "methods": {
-        m: {k: v for k, v in d.items() if k != "profile"} for m, d in record["methods"].items()}},
-        default=float))                        # plain JSON types, the profiles aside
+    meta = {**record, "methods": {m: {k: v for k, v in d.items() if k != "profile"}
+                                  for m, d in record["methods"].items()}}
     for method, m in meta["methods"].items():
         sub = folder / method
         sub.mkdir(exist_ok=True)

@@ -40,7 +40,7 @@ from riser.result import METHODS
 from riser.scene import Scene
 from riser.scene_file import load_scene, scene_from_dict
 
-from .catalog import builtin_paths
+from .catalog import builtin_paths, resolve
 
 #: the most cases one sweep file may expand to (each is validated before anything runs,
 #: about 1 ms each)
@@ -167,7 +167,6 @@ def _read_base(base, folder: Path, source: str) -> tuple[Scene, dict]:
     if not path.is_file():
         path = builtin_paths().get(base, Path(base))
     if not path.is_file():
-        from .catalog import resolve
         try:
             resolve(base)                         # its one-line reason and near-miss hint
         except SceneError as exc:
