@@ -23,10 +23,10 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")                       # write files only, no display needed
-import matplotlib.pyplot as plt              # noqa: E402
+import matplotlib.pyplot as plt  # noqa: E402
 
-from verification.catalog import resolve     # noqa: E402
-from verification.compare import compare     # noqa: E402
+from verification.catalog import resolve  # noqa: E402
+from verification.comparison.protocol import compare  # noqa: E402
 from verification.pipeline import solve_scene  # noqa: E402
 
 out = Path(sys.argv[1] if len(sys.argv) > 1

@@ -91,7 +91,7 @@ class InternalFlow:
 
 
 def read_internal_flow(t) -> InternalFlow:
-    """The [internal_flow] table ``t`` (a :class:`riser.tomlread.Table`) with its optional
+    """The [internal_flow] table ``t`` (a :class:`riser.io.toml_table.Table`) with its optional
     [internal_flow.slug]; the line types are checked by :func:`check_internal_flow`."""
     slug_t = t.table("slug")
     speed = t.number("speed", ge=-MAX_FLOW_SPEED, le=MAX_FLOW_SPEED, unit="m/s")

@@ -1,5 +1,5 @@
 """The scene: an immutable description of one line and its environment (read from a
-file by :mod:`riser.scene_file`).
+file by :mod:`riser.io.scene_file`).
 
 Conventions (SI throughout): x horizontal from the anchor/touchdown towards the
 hang-off, y vertical up with the seabed at y = 0 (the surface at y = water_depth),

@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from .errors import SceneError
-from .tomlread import Table
+from .io.toml_table import Table
 
 #: the longest segment a scene may hold [m] (riser.scene.LIMITS["length"])
 MAX_SEGMENT_LENGTH = 5.0e4

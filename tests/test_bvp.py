@@ -12,8 +12,8 @@ from scipy.special import ellipe, ellipk
 
 import bvp
 from riser.errors import UnsupportedSceneError
+from riser.io.scene_file import parse_scene
 from riser.scene import Current, Ends, Seabed
-from riser.scene_file import parse_scene
 from verification.catalog import resolve
 
 ROD = """

@@ -26,8 +26,8 @@ import pytest
 import bvp
 from bvp.modes import solve_modes
 from riser.errors import UnsupportedSceneError
+from riser.io.scene_file import scene_from_dict
 from riser.modes import PLANES
-from riser.scene_file import scene_from_dict
 from verification.catalog import resolve
 
 RTOL = 1e-6          # see the module docstring

@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from riser.profile import Profile, summarize
-from verification.compare import agreement
+from verification.comparison.agreement import agreement
+from verification.comparison.tolerances import tolerance_value
 from verification.quantities import curve_distance
-from verification.tolerances import tolerance_value
 
 
 def arc(radius: float, n: int, z: float = 0.0, phase: float = 0.0) -> Profile:
@@ -120,7 +120,7 @@ def test_tolerances_within_the_issue_targets():
 def _comparison(rows, paper_rows=()):
     from riser.result import SolveResult, Status
     from verification.catalog import resolve
-    from verification.compare import Comparison
+    from verification.comparison.protocol import Comparison
     sc = resolve("wang2014-baseline")
     res = SolveResult("bvp", sc.name, Status.CONVERGED, "ok", _line(), info={"nodes": 10})
     return Comparison(sc, sc, 0.0, 100.0, res, res, list(rows), matched_scene=sc,
@@ -129,20 +129,27 @@ def _comparison(rows, paper_rows=()):
 
 def test_agreement_csv_columns_are_the_contract():
     # agreement.csv is read by other tools (reports index): exactly these columns, in
-    # this order, whatever extra keys the rows carry for the report; issue 16 appended the
-    # analytic method's two (empty where it does not apply), issue 17 MoorDyn's two (empty
-    # without --peer moordyn), the first seven unchanged
-    from verification.compare import AGREEMENT_COLUMNS
+    # this order, whatever extra keys the rows carry for the report; each further column
+    # that ran appends its two (NAME, NAME_rel_diff: the analytic method's, empty where it
+    # does not apply; a peer's with --peer NAME), the first seven unchanged
+    from verification.comparison.agreement import AGREEMENT_COLUMNS
+    from verification.comparison.columns import ColumnResult
     p = _line()
     comp = _comparison(agreement(p, _line(dx=0.1), depth=60.0))
     assert AGREEMENT_COLUMNS == ("quantity", "bvp", "vfife", "abs_diff", "rel_diff",
-                                 "tolerance", "pass", "analytic", "analytic_rel_diff",
-                                 "moordyn", "moordyn_rel_diff")
+                                 "tolerance", "pass")
     assert tuple(comp.frame().columns) == AGREEMENT_COLUMNS
+    # a column's values land in its two columns, on its rows only
+    col = type("Peer", (), {"name": "peer"})()
+    comp.columns["peer"] = ColumnResult(col, values={"tension": (1.5, 0.25)})
+    df = comp.frame().set_index("quantity")
+    assert tuple(df.reset_index().columns) == AGREEMENT_COLUMNS + ("peer", "peer_rel_diff")
+    assert (df.loc["tension", "peer"], df.loc["tension", "peer_rel_diff"]) == (1.5, 0.25)
+    assert df["peer"].drop("tension").isna().all()
 
 
 def test_verdict_ignores_the_paper_model_rows_and_report_reads():
-    from verification.compare_report import report_markdown
+    from verification.comparison.report import report_markdown
     p = _line()
     q = _line()
     q.tension = p.tension * (1.0 + 1e-14)       # round-off, not a difference

@@ -12,11 +12,12 @@ import pytest
 import bvp
 import vfife
 from riser.errors import SceneError
+from riser.io.scene_file import parse_scene
 from riser.result import SolveResult, Status
-from riser.scene_file import parse_scene
 from riser.settings import BVPSettings, VFIFESettings
-from verification import pipeline, stress
+from verification import pipeline
 from verification.catalog import resolve
+from verification.studies import stress
 
 # a small fixed-ends line: 300 m of 86.8 kg/m steel pipe hanging between (0, 0) and
 # (200, 150) m, no seabed (fast for both methods)

@@ -31,13 +31,16 @@ import pytest
 
 import bvp
 import vfife
-from riser.scene_file import scene_from_dict
-from verification import cost
-from verification.cost import assessment, fits, records, runner, settings
-from verification.cost.errors import rel_errors
-from verification.cost.touchdown import (asymptotic_length, boundary_layer_length,
-                                         foundation_length)
+from riser.io.scene_file import scene_from_dict
 from verification.quantities import raw_values
+from verification.studies import cost
+from verification.studies.cost import assessment, fits, records, runner, settings
+from verification.studies.cost.errors import rel_errors
+from verification.studies.cost.touchdown import (
+    asymptotic_length,
+    boundary_layer_length,
+    foundation_length,
+)
 
 LENGTHS = (20.0, 10.0, 5.0, 2.5)
 TOUCHDOWN_LENGTHS = (8.0, 4.0, 2.0, 1.0)

@@ -15,12 +15,11 @@ import pandas as pd
 import pytest
 
 import vfife
-
-from riser.scene_file import scene_from_dict
-from verification import cost
-from verification.cost import dynamics as dyn
-from verification.cost import dynamics_analysis as da
-from verification.cost import settings
+from riser.io.scene_file import scene_from_dict
+from verification.studies import cost
+from verification.studies.cost import dynamics as dyn
+from verification.studies.cost import dynamics_analysis as da
+from verification.studies.cost import settings
 
 LENGTHS = (10.0, 5.0, 2.0, 1.0)
 

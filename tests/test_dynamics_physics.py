@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import vfife
-from riser.scene_file import scene_from_dict
+from riser.io.scene_file import scene_from_dict
 from verification.catalog import builtin_paths
 
 RHO, G = 1025.0, 9.81

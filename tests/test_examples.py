@@ -18,7 +18,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from verification.tolerances import TOLERANCES
+from verification.comparison.tolerances import TOLERANCES
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples"
@@ -60,7 +60,7 @@ def test_quickstart(tmp_path):
         assert set(v) == {"hang_off_tension", "tdp_tension", "max_moment"}, proc.stdout
 
     # 1. The two methods agree on the hang-off tension within the comparison protocol's
-    # documented tolerance (verification/tolerances.py: 1e-4 of the value, the measured
+    # documented tolerance (verification/comparison/tolerances.py: 1e-4 of the value, the measured
     # worst 2.8e-5 over the built-in and hard scenes times 3.5; scr-steel: ~2e-5).
     kind, rel = TOLERANCES["hang_off_tension"]
     assert kind == "rel"

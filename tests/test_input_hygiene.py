@@ -20,8 +20,9 @@ from pathlib import Path
 import pytest
 
 import bvp.strategy
-from verification import outdir
+from verification import peers
 from verification.catalog import SCENE_DIR
+from verification.runtime import outdir
 
 ROOT = Path(__file__).resolve().parents[1]
 SCR = (SCENE_DIR / "scr-steel.toml").read_text()
@@ -103,7 +104,7 @@ def test_an_unreadable_file(tmp_path, run_cli, monkeypatch):
 
 
 def test_a_utf8_byte_order_mark_is_accepted(tmp_path):
-    from riser.scene_file import load_scene
+    from riser.io.scene_file import load_scene
     f = tmp_path / "bom.toml"
     f.write_bytes(SCR.encode("utf-8-sig"))
     assert load_scene(f).name == "scr-steel"
@@ -179,7 +180,8 @@ def test_the_lists_cover_every_committed_report():
     lists = {"wang2014": outdir.STUDY_FILES["wang2014"], "yu2021": outdir.STUDY_FILES["yu2021"],
              "liu2021": outdir.STUDY_FILES["liu2021"], "kang2015": outdir.STUDY_FILES["kang2015"],
              "stress": outdir.STRESS,
-             "bench": outdir.BENCH + outdir.BENCH_PEER + outdir.BENCH_SWEEP}
+             "bench": outdir.BENCH + outdir.BENCH_SWEEP
+             + tuple(peers.peer(n).bench_file for n in peers.names())}
     for name, names in lists.items():
         for p in (rep / name).rglob("*"):
             if p.is_file():
@@ -269,7 +271,7 @@ def test_a_rigid_seabed_touchdown_beyond_the_first_segment_is_named(tmp_path, ru
 def test_a_second_touchdown_is_given_up_early(no_solve_bvp):
     # hard-buoyancy-loss: solve_bvp failed on it after 35-50 s (2 x 8000-node attempts);
     # now refused before solving (the BVP's forms hold one contact zone), with the reason
-    from verification import stress
+    from verification.studies import stress
     t0 = time.perf_counter()
     row, _ = stress.run_one("hard-buoyancy-loss", "bvp")
     assert time.perf_counter() - t0 < 10.0      # the catenary guesses only: ~1 s (see above)

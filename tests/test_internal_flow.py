@@ -22,7 +22,7 @@ import pytest
 import bvp
 import vfife
 from riser.internal_flow import contents_mass_per_length
-from riser.scene_file import scene_from_dict
+from riser.io.scene_file import scene_from_dict
 from verification.catalog import builtin_paths
 from vfife.dynamics import run_dynamics
 

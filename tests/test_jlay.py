@@ -17,9 +17,9 @@ import pytest
 from scipy.optimize import fsolve
 
 import bvp
+from riser.io.scene_file import parse_scene
 from riser.result import Status
 from riser.scene import Ends
-from riser.scene_file import parse_scene
 from verification.catalog import builtin_paths, resolve
 from verification.pipeline import solve_scene
 

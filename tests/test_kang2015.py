@@ -1,4 +1,4 @@
-"""The Kang, Zhang & Zhang (2015) J-lay study (verification/kang2015.py, kang2015_report.py):
+"""The Kang, Zhang & Zhang (2015) J-lay study (verification/studies/kang2015/):
 the paper's findings as numbers from the analytic method and the BVP of the J-lay form
 (fast, ~1 s), the table.csv contract on a small run without the VFIFE (5 cases, 2 EI of
 the epsilon sweep, ~4 s), and (slow) the full study with the VFIFE (~30 s)."""
@@ -14,10 +14,10 @@ import pytest
 
 import bvp
 from riser.sections import segment_properties
-from verification import kang2015 as k
-from verification import outdir
-from verification.kang2015_report import catenary_overestimate_estimate
+from verification.runtime import outdir
 from verification.studies import STUDIES, study
+from verification.studies.kang2015 import cases as k
+from verification.studies.kang2015.report import catenary_overestimate_estimate
 
 LABELS = [("base", "base")] + [("wet_weight", f"w={w}kN/m") for w in
                                ("1.50", "1.55", "1.60", "1.65", "1.70")] + [

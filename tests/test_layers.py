@@ -1,6 +1,7 @@
 """The layering of ARCHITECTURE.md, checked on the source: what each package may import,
-no import cycle (function-local imports included), nothing imports the CLI, and no module
-above about 400 lines but the kernels."""
+which folder of ``verification/`` may import which, what may sit at the top of
+``verification/``, no import cycle (function-local imports included), nothing imports the
+CLI, and no module above about 400 lines but the kernels."""
 
 from __future__ import annotations
 
@@ -12,6 +13,26 @@ PACKAGES = ("riser", "bvp", "vfife", "analytic", "verification")
 #: package -> project packages it may import (ARCHITECTURE.md)
 ALLOWED = {"riser": set(), "bvp": {"riser"}, "vfife": {"riser"}, "analytic": {"riser"},
            "verification": {"riser", "bvp", "vfife", "analytic"}}
+#: the folders of verification/ -> the folders of verification/ they may import ("core":
+#: the modules at its top, the pipeline, quantities, catalog and regression store). The
+#: runtime and the report helpers import nothing of verification; the comparison never a
+#: peer, a study or a sweep; studies and sweeps not each other; only the command line
+#: imports the peers; nothing imports the command line (test_nothing_imports_the_cli).
+FOLDER_ALLOWED = {
+    "runtime": {"runtime"},
+    "report": {"report"},
+    "core": {"core"},
+    "comparison": {"core", "comparison", "runtime", "report"},
+    "studies": {"core", "comparison", "runtime", "report", "studies"},
+    "sweeps": {"core", "comparison", "runtime", "report", "sweeps"},
+    "peers": {"core", "comparison", "runtime", "report", "peers"},
+    "bench": {"core", "runtime", "report", "bench"},
+    "cli": {"core", "comparison", "runtime", "report", "studies", "sweeps", "peers", "bench",
+            "cli"},
+    "facade": {"core", "comparison"},
+}
+#: the only modules at the top of verification/ (the rest lives in a folder of its concern)
+TOP_MODULES = {"__init__.py", "pipeline.py", "quantities.py", "catalog.py", "regress.py"}
 #: the size rule: ~400 lines a module; vfife/kernels.py is one concern and may be long
 MAX_LINES = 420
 LONG_OK = {"vfife/kernels.py"}
@@ -55,12 +76,62 @@ def graph() -> dict[str, set[str]]:
     return {n: imports_of(n, p, set(mods)) for n, p in mods.items()}
 
 
+def folder(module: str) -> str:
+    """The folder of a verification module (see FOLDER_ALLOWED)."""
+    parts = module.split(".")
+    if len(parts) == 1:
+        return "facade"
+    return parts[1] if parts[1] in FOLDER_ALLOWED else "core"
+
+
+def folder_violations(g: dict[str, set[str]]) -> list[str]:
+    """Imports between folders of verification/ that FOLDER_ALLOWED does not allow (a
+    module's import of its own package's __init__ is not an edge between folders)."""
+    bad = []
+    for a, deps in g.items():
+        if not a.startswith("verification"):
+            continue
+        for b in deps:
+            if b.startswith("verification") and b != "verification":
+                if folder(b) not in FOLDER_ALLOWED[folder(a)]:
+                    bad.append(f"{a} ({folder(a)}) imports {b} ({folder(b)})")
+    return bad
+
+
 def test_the_scan_sees_imports():
-    # the checker must be able to fail: it finds known edges, relative and absolute
+    # the checker must be able to fail: it finds known edges, relative and absolute,
+    # at module level and inside functions
     g = graph()
-    assert "verification.pipeline" in g["verification.cli"]
+    assert "verification.pipeline" in g["verification.cli.solve"]        # in a function
+    assert "verification.comparison.agreement" in g["verification.comparison.protocol"]
     assert "riser.errors" in g["riser.scene"]
     assert "vfife.kernels" in g["vfife.model"]
+
+
+def test_the_folder_rules_can_fail():
+    # each rule of the issue, broken on purpose, is reported
+    broken = {"verification.comparison.protocol": {"verification.peers.moordyn.column"},
+              "verification.runtime.engine": {"verification.pipeline"},
+              "verification.report.figures": {"verification.comparison.formatting"},
+              "verification.studies.compare": {"verification.sweeps.run"},
+              "verification.sweeps.case": {"verification.studies.stress"},
+              "verification.studies.stress": {"verification.peers.moordyn"},
+              "verification.pipeline": {"verification.cli.common"}}
+    assert len(folder_violations(broken)) == len(broken)
+    assert folder_violations({"verification.cli.compare": {"verification.peers"}}) == []
+
+
+def test_folders_of_verification_import_as_allowed():
+    bad = folder_violations(graph())
+    assert not bad, bad
+
+
+def test_only_the_named_modules_sit_at_the_top_of_verification():
+    top = {p.name for p in (ROOT / "verification").glob("*.py")}
+    assert top == TOP_MODULES
+    folders = {p.name for p in (ROOT / "verification").iterdir()
+               if p.is_dir() and (p / "__init__.py").exists()}
+    assert folders == set(FOLDER_ALLOWED) - {"core", "facade"}
 
 
 def test_packages_import_only_lower_layers():
@@ -71,7 +142,9 @@ def test_packages_import_only_lower_layers():
 
 
 def test_nothing_imports_the_cli():
-    bad = [a for a, deps in graph().items() if "verification.cli" in deps]
+    bad = [a for a, deps in graph().items()
+           if not a.startswith("verification.cli")
+           and any(d == "verification.cli" or d.startswith("verification.cli.") for d in deps)]
     assert not bad, bad
 
 

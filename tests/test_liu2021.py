@@ -1,4 +1,4 @@
-"""The Liu et al. (2021) slug-flow study (verification/liu2021.py, liu2021_analysis.py): the
+"""The Liu et al. (2021) slug-flow study (verification/studies/liu2021/): the
 signal analysis on synthetic signals with a known answer, the table.csv contract on a
 short coarse run (~3 s), and (slow) the paper's qualitative findings on the full study."""
 
@@ -10,9 +10,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from verification import liu2021 as liu
-from verification import liu2021_analysis as la
 from verification.studies import STUDIES, study
+from verification.studies.liu2021 import analysis as la
+from verification.studies.liu2021 import cases as liu
 
 DT = 0.5                                   # s, the study's output interval
 

@@ -27,8 +27,8 @@ from scipy.optimize import brentq, fsolve
 import bvp
 import vfife
 from riser.errors import SceneError
+from riser.io.scene_file import parse_scene
 from riser.scene import Seabed
-from riser.scene_file import parse_scene
 from verification.cli import main as cli_main
 from verification.pipeline import vfife_equivalent
 

@@ -1,4 +1,4 @@
-"""The cross-method modal report (verification/modes.py): its files and the agreement of
+"""The cross-method modal report (verification/comparison/modes.py): its files and the agreement of
 the two methods' modes."""
 
 from __future__ import annotations
@@ -8,11 +8,11 @@ import csv
 import numpy as np
 import pytest
 
+from riser.io.scene_file import scene_from_dict
 from riser.modes import PLANES, ModalResult, Mode
 from riser.result import Status
-from riser.scene_file import scene_from_dict
-from verification import modes as vm
 from verification.catalog import resolve
+from verification.comparison import modes as vm
 
 try:                                   # the BVP's modal analysis (written in parallel)
     import bvp.modes  # noqa: F401

@@ -11,20 +11,19 @@ from __future__ import annotations
 
 import math
 import re
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 from riser.errors import UnsupportedSceneError
-from riser.moordyn_deck import DeckError, parse_deck, read_deck
-from riser.moordyn_export import export_scene
-from riser.moordyn_import import import_deck
-from riser.scene_file import parse_scene
+from riser.io.moordyn.deck import DeckError, parse_deck, read_deck
+from riser.io.moordyn.deck_from_scene import export_scene
+from riser.io.moordyn.scene_from_deck import import_deck
+from riser.io.scene_file import parse_scene
 from riser.sections import segment_properties
 from verification.catalog import builtin_paths, resolve
 from verification.cli import main
-from verification.moordyn_io import export
+from verification.peers.moordyn.deck import export
 
 RTOL = 1e-12   # repr-exact numbers; the equivalent diameter's sqrt and squares round
 
@@ -265,7 +264,7 @@ def test_cli_round_trip(tmp_path, capsys):
         parse_deck("---- POINTS ----\nh\nh\n---- POINTS ----\n")
     # the same problem: the BVP gives the same hang-off tension (1e-9: a tenth of the
     # collocation tolerance; the inputs agree to 1e-15)
-    from riser.scene_file import load_scene
+    from riser.io.scene_file import load_scene
     from verification.pipeline import solve_scene
     t0 = solve_scene(resolve("scr-steel"), "bvp").summary()["hang_off_tension"]
     t1 = solve_scene(load_scene(tmp_path / "scr.toml"), "bvp").summary()["hang_off_tension"]

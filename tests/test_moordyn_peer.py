@@ -4,7 +4,7 @@ Needs the optional package ``moordyn`` (``pip install -e '.[moordyn]'``; CI inst
 every test but the first is skipped with that reason without it. The scene is the
 built-in steel catenary riser at 20 m MoorDyn segments (100 segments: seconds a run; a
 short stiff line converges far more slowly in MoorDyn's static solver, see the README). The reference is the BVP on the same scene; the tolerances are MoorDyn's own
-(verification/compare_moordyn.py) or tighter where the test says why.
+(verification/peers/moordyn/column.py) or tighter where the test says why.
 """
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ import sys
 import numpy as np
 import pytest
 
-from riser.scene_file import parse_scene
+from riser.io.scene_file import parse_scene
 from verification.catalog import builtin_paths
 from verification.cli import main
 from verification.pipeline import solve_scene
@@ -38,7 +38,7 @@ def test_missing_moordyn_is_one_line_before_solving(tmp_path, capsys, monkeypatc
 
 moordyn = pytest.importorskip("moordyn", reason="the optional extra [moordyn] is not installed")
 
-from verification.peer_moordyn import RESIDUAL_TOL, run  # noqa: E402
+from verification.peers.moordyn.run import RESIDUAL_TOL, run  # noqa: E402
 
 
 @pytest.fixture(scope="module")

@@ -1,4 +1,4 @@
-"""The progress display (verification/progress.py) and the callbacks that feed it.
+"""The progress display (verification/runtime/progress.py) and the callbacks that feed it.
 
 The display is a status line on stderr redrawn in place, on a terminal only: these tests
 give it a fake terminal (a StringIO that says it is a TTY) and a fake clock.
@@ -13,8 +13,8 @@ from pathlib import Path
 
 import pytest
 
-from verification import progress as pg
-from verification.progress import Progress, UnitTracker, scoped, with_fraction
+from verification.runtime import progress as pg
+from verification.runtime.progress import Progress, UnitTracker, scoped, with_fraction
 
 ROOT = Path(__file__).resolve().parents[1]
 LONG_DYNAMIC = ROOT / "verification" / "scenes" / "hard" / "hard-long-dynamic.toml"
@@ -170,8 +170,8 @@ def test_unit_tracker_weights_by_declared_seconds():
 
 def test_dynamics_reports_increasing_fractions_ending_at_one():
     import vfife
+    from riser.io.scene_file import load_scene
     from riser.scene import Dynamics, TopMotion
-    from riser.scene_file import load_scene
     base = load_scene(LONG_DYNAMIC)
     sc = base.replace(dynamics=Dynamics(duration=5.0, output_interval=1.0,
                                         top_motion=TopMotion(axis="y", amplitude=1.0,

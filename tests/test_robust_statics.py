@@ -2,7 +2,7 @@
 meshes, the lift-off catenary start and the continuation in weight (vfife.statics).
 
 Every number is checked against an independent source: the BVP solution of the same
-scene (comparison protocol tolerances, verification/tolerances.py) or a closed form.
+scene (comparison protocol tolerances, verification/comparison/tolerances.py) or a closed form.
 """
 
 from __future__ import annotations
@@ -10,11 +10,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from verification import stress
 from verification.catalog import resolve
-from verification.compare import agreement
+from verification.comparison.agreement import agreement
 from verification.pipeline import solve_scene
 from verification.quantities import reference_depth
+from verification.studies import stress
 from vfife.mesh import build_mesh, catenary_shape
 from vfife.relaxation import static_inertia
 

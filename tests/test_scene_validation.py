@@ -14,7 +14,7 @@ import tomllib
 import pytest
 
 from riser.errors import SceneError
-from riser.scene_file import load_scene, parse_scene
+from riser.io.scene_file import load_scene, parse_scene
 from riser.sections import segment_properties
 from verification.catalog import builtin_paths
 

@@ -11,7 +11,7 @@ import pytest
 from scipy.optimize import fsolve
 
 from riser.errors import SceneError
-from riser.scene_file import load_scene, parse_scene
+from riser.io.scene_file import load_scene, parse_scene
 from riser.sections import segment_properties
 from verification.pipeline import solve_scene
 
@@ -47,7 +47,7 @@ def test_section_without_wall_dimension(name):
 def test_both_methods_solve_and_agree(name):
     # protects: the section-property scenes solve with both methods (1 m elements to keep
     # the test fast; the scenes' own finer lengths are for the moment peaks). Tolerance:
-    # the compare protocol's hang-off tension row, 1e-4 relative (verification/tolerances.py)
+    # the compare protocol's hang-off tension row, 1e-4 relative (verification/comparison/tolerances.py)
     sc = scene(name)
     b = solve_scene(sc, "bvp")
     v = solve_scene(sc, "vfife", element_length=1.0)

@@ -8,8 +8,8 @@ import math
 import pytest
 
 import bvp
-from riser.scene_file import load_scene
-from verification import stress
+from riser.io.scene_file import load_scene
+from verification.studies import stress
 
 FAST = [
     ("hard-flexible", "bvp", "converged"),             # bending length << 1 m: stiff BVP layer

@@ -1,11 +1,11 @@
 """``riser-verify sweep``: the sweep file, the cases, the run with resume, the tables and
-report, and the engine they run on (verification/sweep_file.py, sweep_case.py, sweep.py,
-sweep_report.py, engine.py, cli_sweep.py).
+report, and the engine they run on (verification/sweeps/, verification/runtime/engine.py,
+verification/cli/sweep.py).
 
 Every number is checked against a source the sweep does not compute itself: the sweep
 file parsed with ``tomllib`` (the file contract), an independent solve of each case's
 scene through ``verification.pipeline.solve_scene`` (what ``riser-verify solve`` runs),
-the compare protocol (``verification.compare.agreement``) on those profiles, the
+the compare protocol (``verification.comparison.agreement.agreement``) on those profiles, the
 profiles interpolated at the envelope's stations, and a physical ordering (a vessel
 farther from the anchor pulls the catenary tighter: higher hang-off tension).
 
@@ -34,10 +34,10 @@ import numpy as np
 import pytest
 
 from riser.errors import SceneError
+from riser.io.scene_file import load_scene
 from riser.profile import summarize
-from riser.scene_file import load_scene
 from verification import cli
-from verification.sweep_file import SWEEP_DIR, load_sweep
+from verification.sweeps.file import SWEEP_DIR, load_sweep
 
 #: the two vessel offsets of the module's sweep. At 1480 m the methods agree within the
 #: protocol; at 1520 m its moment row was measured at 1.18 x its tolerance (the same in
@@ -46,7 +46,7 @@ from verification.sweep_file import SWEEP_DIR, load_sweep
 #: which: they recompute the protocol on independent solves.
 OFFSETS = ([1480.0, 1000.0], [1520.0, 1000.0])
 #: the columns of cases.csv in the documented order (README "Outputs", the docstring of
-#: sweep_report.py): case, method, one column per vary key, ...
+#: verification/sweeps/report.py): case, method, one column per vary key, ...
 SUMMARY_COLUMNS = ["hang_off_tension", "hang_off_angle_deg", "max_tension", "max_tension_s",
                    "min_tension", "max_moment", "max_moment_s", "max_shear", "tdp_x",
                    "tdp_tension", "span", "length"]
@@ -398,7 +398,7 @@ def test_a_farther_vessel_gives_a_higher_hang_off_tension(swept):
 
 
 def test_agreement_columns_follow_the_compare_protocol(swept, independent):
-    from verification.compare import agreement
+    from verification.comparison.agreement import agreement
     for case in swept.sweep.cases:
         b, v = independent[case.index, "bvp"], independent[case.index, "vfife"]
         # reference depth of the protocol: the water depth (verification/quantities.py)
@@ -606,7 +606,7 @@ def test_a_failing_case_never_stops_the_others(run_cli, tmp_path):
 
 @pytest.mark.parametrize("scene", [{"segments": "nonsense"}, None, {}])
 def test_run_case_never_raises(scene):
-    from verification.sweep_case import run_case
+    from verification.sweeps.case import run_case
     rec = run_case({"index": 7, "digest": "abc", "scene": scene, "methods": ["bvp", "vfife"]})
     assert rec["index"] == 7 and rec["digest"] == "abc"
     assert rec["error"]                                  # the reason, named
@@ -666,7 +666,7 @@ def test_two_local_workers_give_the_same_table(swept, tmp_path):
 # ============================================================ 7. the engine
 @pytest.mark.parametrize("jobs", [1, 2])
 def test_engine_yields_every_unit_and_the_exception_of_one_that_raised(jobs):
-    from verification.engine import Engine
+    from verification.runtime.engine import Engine
     args = [(4.0,), (-1.0,), (9.0,), (2.25,)]
     with Engine(jobs=jobs) as engine:
         got = list(engine.map(math.sqrt, args))

@@ -1,6 +1,6 @@
 """``riser-verify sweep --scheduler``: the same sweep on a real local Dask cluster (a
 scheduler and two single-threaded workers started by the test through the dask command
-line, :func:`verification.dask_local.local_cluster`) gives the same numbers as in this
+line, :func:`verification.runtime.dask_local.local_cluster`) gives the same numbers as in this
 process; an address that does not answer fails in one line before anything is written;
 a Dask run resumes a folder of a local run.
 
@@ -21,7 +21,7 @@ from pathlib import Path
 
 import pytest
 
-from verification.engine import EngineError, require_dask
+from verification.runtime.engine import EngineError, require_dask
 
 try:
     import distributed
@@ -54,7 +54,7 @@ CASES = 4
 def _cli(argv: list[str], connect_timeout_s: float | None = None):
     """``riser-verify ARGV`` in a fresh Python (what a user sees on stderr, logging of
     distributed included), optionally with a shorter scheduler connection timeout."""
-    code = ("import sys, verification.engine as e\n"
+    code = ("import sys, verification.runtime.engine as e\n"
             + (f"e.CONNECT_TIMEOUT_S = {connect_timeout_s!r}\n" if connect_timeout_s else "")
             + "from verification.cli import main\nsys.exit(main(sys.argv[1:]))\n")
     p = subprocess.run([sys.executable, "-c", code, *argv], cwd=ROOT, capture_output=True,
@@ -98,7 +98,7 @@ def local_run(sweep_file, tmp_path_factory):
 @pytest.fixture(scope="module")
 def cluster():
     """The address of a local scheduler with two workers, stopped after the module."""
-    from verification.dask_local import local_cluster
+    from verification.runtime.dask_local import local_cluster
     with local_cluster(workers=2) as address:
         yield address
 
@@ -220,9 +220,9 @@ def test_two_workers_raise_the_throughput_on_every_engine():
     # workers must beat one on both engines. The bound 1.3x is well below the 1.74x (local)
     # and 1.57x (Dask) measured on an idle 2-core machine, because a loaded CI machine
     # shares its cores; the ideal is 2x and nothing here can exceed it by more than noise.
-    from verification.bench_sweep import measure
-    from verification.progress import Progress
-    from verification.sweep_file import load_sweep
+    from verification.runtime.progress import Progress
+    from verification.sweeps.bench import measure
+    from verification.sweeps.file import load_sweep
     with Progress("bench --sweep", quiet=True) as prog:
         b = measure(load_sweep("scr-envelope"), prog)
     e = b["engines"]

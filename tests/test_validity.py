@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 
 from riser import validity
+from riser.io.scene_file import parse_scene
 from riser.profile import Profile
-from riser.scene_file import parse_scene
 from verification.catalog import builtin_paths
 from verification.pipeline import solve_scene
 

@@ -13,10 +13,10 @@ import pytest
 from scipy.optimize import fsolve
 
 import vfife
-from riser.transform import DEFAULT_SEABED_STIFFNESS, fixed_ends_scene
 from riser.errors import UnsupportedSceneError
+from riser.io.scene_file import load_scene, scene_from_dict
 from riser.profile import summarize
-from riser.scene_file import load_scene, scene_from_dict
+from riser.transform import DEFAULT_SEABED_STIFFNESS, fixed_ends_scene
 from vfife.mesh import build_mesh
 from vfife.model import Model
 from vfife.relaxation import relax

@@ -16,8 +16,8 @@ import pytest
 
 import vfife
 from riser.errors import UnsupportedSceneError
+from riser.io.scene_file import scene_from_dict
 from riser.modes import PLANES
-from riser.scene_file import scene_from_dict
 from verification.catalog import resolve
 from vfife.modes import free_vibration, solve_modes
 

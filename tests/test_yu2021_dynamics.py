@@ -1,4 +1,4 @@
-"""The dynamic study of Yu et al. (2021) (verification/yu2021_dynamics.py): the lateral-speed
+"""The dynamic study of Yu et al. (2021) (verification/studies/yu2021/dynamics.py): the lateral-speed
 extraction on synthetic states with a known answer, and the dynamics.csv contract on a
 coarse, short run (~10 s); the full-resolution steady-state check is marked slow."""
 
@@ -10,9 +10,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from verification import yu2021_dynamics as yd
 from verification.catalog import resolve
-from verification.yu2021 import sheared, with_hang_off_x
+from verification.studies.yu2021 import dynamics as yd
+from verification.studies.yu2021.cases import sheared, with_hang_off_x
 
 XH = 613.456        # the calibrated hang-off offset of the static study (reports/yu2021)
 

@@ -6,8 +6,8 @@ import difflib
 from pathlib import Path
 
 from riser.errors import SceneError
+from riser.io.scene_file import load_scene
 from riser.scene import Scene
-from riser.scene_file import load_scene
 
 SCENE_DIR = Path(__file__).parent / "scenes"
 

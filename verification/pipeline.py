@@ -30,6 +30,7 @@ from riser.transform import fixed_ends_scene
 from vfife.dynamic_outputs import ARC_LENGTH_COLUMNS, ARC_LENGTH_KEYS
 from vfife.ends import require_vfife_model
 
+
 @dataclass(frozen=True)
 class VfifeEquivalent:
     """The scene the VFIFE solves for a scene, and how to read its results back.
@@ -110,7 +111,7 @@ def solve_scene(scene: Scene, method: str, *, tolerance: float | None = None,
     Raises SceneError (bad input), UnsupportedSceneError (refused before solving) and
     SolveFailed (the BVP a conversion needs did not converge); every other outcome is in
     the result's status. ``progress``: optional callable, ``progress(message)`` or
-    ``progress(message, fraction=None)`` (see :mod:`verification.progress`); the BVP
+    ``progress(message, fraction=None)`` (see :mod:`verification.runtime.progress`); the BVP
     says only when it starts (``solve_bvp`` has no callback)."""
     say = progress or (lambda message: None)
     if method == "bvp":

@@ -10,10 +10,10 @@ import numpy as np
 from riser import validity
 from riser.errors import UnsupportedSceneError
 from riser.internal_flow import wall_tension
+from riser.io.scene_file import scene_from_dict
 from riser.profile import Profile
 from riser.result import DynamicsResult, SolveResult, Status
 from riser.scene import Scene
-from riser.scene_file import scene_from_dict
 
 from .dynamic_outputs import touchdown_s
 from .dynamics import run_dynamics

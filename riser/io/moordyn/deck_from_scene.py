@@ -1,0 +1,272 @@
+"""A fixed-ends scene -> a MoorDyn v2 deck (``riser-verify export-moordyn``, and the deck the
+MoorDyn peer runs).
+
+One MoorDyn line per run of segments with the same section (adjacent equal segments are
+merged: a joint between MoorDyn lines is a hinge, so none is added where the scene has
+none); free points join them, fixed points hold the anchor and the hang-off.
+
+Equivalent sections. MoorDyn ties weight, buoyancy, drag and added mass to one diameter d
+and the mass per length m: w = (m - rho pi d^2 / 4) g, normal drag on d l, tangential drag
+on pi d l, added mass Ca rho pi d^2 / 4. A scene segment has its own weight w (buoyancy
+modules, a weight override, contents), its hydrodynamic diameter D_h and its mass m. The
+deck keeps m (the inertia) and chooses d from the displaced area A = (m g - w) / (rho g),
+d = sqrt(4 A / pi), then Cd' = Cd D_h / d, CdAx' = CdAx D_h / d, Ca' = Ca D_h^2 / d^2, so
+that weight, drag and added mass per metre equal the scene's. For a bare pipe d = D.
+
+Coordinates: the scene's x -> MoorDyn X, the scene's y (up from the seabed) -> Z = y -
+WtrDpth, the scene's z -> -Y (both frames right-handed). The seabed: kBot = k / d of the
+bottom line, cBot from the damping fraction (see :mod:`riser.io.moordyn.scene_from_deck`, the exact
+inverse). A current is written to ``current_profile.txt`` (``Currents 1``), which MoorDyn
+reads from the deck's folder.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from ...errors import UnsupportedSceneError
+from ...scene import Scene
+from ...sections import segment_properties
+from .deck import OPTION_KEYS, Deck, DeckLine, DeckLineType, DeckPoint
+
+#: the initial-condition settings written to a deck (MoorDyn-C's stationary solver):
+#: the time it may run [s], the residual acceleration it stops at [m/s2] and the interval
+#: of its checks [s]; see verification/peers/moordyn/run.py for what they mean
+IC_OPTIONS = {"TmaxIC": 2000.0, "threshIC": 1.0e-4, "dtIC": 1.0}
+
+
+@dataclass
+class ExportedDeck:
+    """The deck text, the current profile's text (None without a current), the notes
+    written into the deck, and for each MoorDyn line the scene segments it holds and its
+    arc length [s0, s1] [m] from the scene's bottom end."""
+
+    text: str
+    current_profile: str | None
+    notes: list[str]
+    deck: Deck
+    line_segments: list[list[int]] = field(default_factory=list)
+    line_span: list[tuple[float, float]] = field(default_factory=list)
+
+
+def _check(scene: Scene) -> None:
+    why = None
+    if scene.ends.kind != "fixed":
+        why = (f"the '{scene.ends.kind}' form: MoorDyn needs fixed ends (the command "
+               "converts a touchdown-form scene first; a library caller uses "
+               "verification.pipeline.vfife_equivalent)")
+    elif scene.axial_model != "extensible":
+        why = "[model] axial = 'inextensible': MoorDyn's lines are extensible (EA)"
+    elif scene.seabed_model == "rigid":
+        why = "[model] seabed = 'rigid': MoorDyn's seabed is an elastic foundation (kBot)"
+    elif scene.internal_flow is not None:
+        why = "[internal_flow]: MoorDyn has no internal flow"
+    if why:
+        raise UnsupportedSceneError(f"cannot export {scene.name} to MoorDyn: {why}")
+
+
+def _section(scene: Scene, props, seg) -> tuple:
+    """(d, m, EA, EI, Cd, Ca, CdAx) of the equivalent MoorDyn section of one segment."""
+    g, rho = scene.gravity, scene.water_density
+    lt = scene.line_types[seg.line_type]
+    area = (props.mass * g - props.weight) / (rho * g)
+    if area <= 0.0:
+        raise UnsupportedSceneError(
+            f"cannot export {scene.name} to MoorDyn: segment '{seg.label or seg.line_type}' "
+            f"weighs {props.weight:g} N/m in water, more than its {props.mass * g:g} N/m in "
+            "air; MoorDyn's line has no equivalent diameter for it")
+    d = math.sqrt(4.0 * area / math.pi)
+    dh = seg.hydro_diameter or lt.hydro_diameter or lt.outer_diameter
+    return (d, props.mass, props.EA, props.EI, lt.drag_normal * dh / d,
+            lt.added_mass * (dh / d) ** 2, lt.drag_tangential * dh / d)
+
+
+def export_scene(scene: Scene, *, segment_length: float | None = None,
+                 joints: list[tuple[float, float, float]] | None = None,
+                 hang_off: str = "Fixed", damping: float = 0.8,
+                 ic: dict | None = None, notes: tuple[str, ...] = ()) -> ExportedDeck:
+    """The MoorDyn deck of a fixed-ends ``scene``.
+
+    segment_length : MoorDyn segment length [m] (default: the scene's VFIFE element
+        length); each line gets ceil(L / segment_length) segments.
+    joints : scene (x, y, z) [m] of the joints between MoorDyn lines, from a solved
+        profile: MoorDyn's initial guess for its free points (default: along the chord).
+    hang_off : the hang-off point's attachment, 'Fixed' or 'Coupled' (driven by a caller).
+    damping : the axial damping written as BA/-zeta = -damping (a fraction of critical
+        per segment; MoorDyn's damping, not the scene's, which has none in statics).
+    ic : overrides of :data:`IC_OPTIONS`.
+    notes : lines put first among the deck's comments (e.g. how the scene was converted).
+    """
+    _check(scene)
+    props = segment_properties(scene)
+    h = float(scene.vfife.element_length if segment_length is None else segment_length)
+    depth = scene.water_depth if scene.water_depth is not None else scene.ends.hang_off[1]
+    notes = [*notes, "Written by riser-verify export-moordyn. Coordinates: X = the scene's x, Z = y - "
+             f"WtrDpth (seabed at Z = {-depth:g} m), Y = -z.",
+             "Each line type is the equivalent section of its segments: the mass per metre "
+             "is the scene's (pipe, contents, modules); Diam is the volume-equivalent "
+             "diameter sqrt(4 (m g - w) / (rho g pi)) that gives the scene's submerged "
+             "weight w; Cd, CdAx and Ca are scaled by D_h/Diam, (D_h/Diam) and "
+             "(D_h/Diam)^2 so that drag and added mass per metre equal the scene's for its "
+             "hydrodynamic diameter D_h.",
+             "Joints between lines are free points, which MoorDyn treats as hinges (no "
+             "moment); adjacent segments with the same section are one line."]
+    if scene.water_depth is None:
+        notes.append("The scene gives no water depth: WtrDpth is the hang-off height (the "
+                     "hang-off at the surface).")
+    # group adjacent equal sections
+    groups: list[tuple[tuple, list[int]]] = []
+    for i, (seg, p) in enumerate(zip(scene.segments, props)):
+        sec = _section(scene, p, seg)
+        if groups and groups[-1][0] == sec:
+            groups[-1][1].append(i)
+        else:
+            groups.append((sec, [i]))
+    deck = Deck(source=f"{scene.name}.dat",
+                front=[f"{scene.name}: {scene.title}" if scene.title else scene.name])
+    names: dict[tuple, str] = {}
+    for sec, idx in groups:
+        if sec in names:
+            continue
+        base = scene.segments[idx[0]].line_type
+        lt = scene.line_types[base]
+        name = base if abs(sec[0] - lt.outer_diameter) < 1e-12 * lt.outer_diameter \
+            and base not in deck.line_types else f"{base}_s{idx[0] + 1}"
+        name = "".join(c if c.isalnum() or c in "_-." else "_" for c in name)
+        names[sec] = name
+        d, m, EA, EI, Cd, Ca, CdAx = sec
+        deck.line_types[name] = DeckLineType(name, d, m, EA, f"{-abs(damping):g}", EI, Cd,
+                                             Ca, CdAx, 0.0)
+    # points: anchor, joints, hang-off (scene -> MoorDyn coordinates)
+    def md(x, y, z=0.0):
+        return (x, -z, y - depth)
+
+    ax, ay = scene.ends.anchor
+    hx, hy = scene.ends.hang_off
+    s_edges = [props[g[1][0]].s_start for g in groups] + [props[-1].s_end]
+    total = s_edges[-1]
+    pts = [md(ax, ay)]
+    for k in range(1, len(groups)):
+        if joints is not None:
+            pts.append(md(*joints[k - 1]))
+        else:
+            f = s_edges[k] / total
+            pts.append(md(ax + f * (hx - ax), ay + f * (hy - ay)))
+    pts.append(md(hx, hy))
+    kinds = ["Fixed"] + ["Free"] * (len(groups) - 1) + [hang_off]
+    deck.points = [DeckPoint(i + 1, kind, *p) for i, (kind, p) in enumerate(zip(kinds, pts))]
+    spans = []
+    for k, (sec, idx) in enumerate(groups):
+        length = sum(scene.segments[i].length for i in idx)
+        n = max(1, math.ceil(length / h - 1e-9))
+        deck.lines.append(DeckLine(k + 1, names[sec], str(k + 1), str(k + 2), length, n, "-"))
+        spans.append((s_edges[k], s_edges[k + 1]))
+    opts = _options(scene, deck, groups[0][0], depth, notes, ic)
+    deck.options = {k: (v, 0) for k, v in opts.items()}
+    deck.outputs = ["AnchTen1", f"FairTen{len(groups)}"]
+    profile = _current_profile(scene, depth) if scene.current is not None else None
+    if scene.dynamics is not None:
+        notes.append("The scene's [dynamics] (top motion, duration) is not exported: "
+                     "statics and the current only.")
+    if any(lt.compression for lt in scene.line_types.values()):
+        notes.append("MoorDyn's segments carry no compression (slack at zero strain); the "
+                     "scene's pipe does: the two differ wherever the effective tension is "
+                     "negative.")
+    text = format_deck(deck, comments=notes, option_notes=_OPTION_NOTES)
+    return ExportedDeck(text, profile, notes, deck, [idx for _, idx in groups], spans)
+
+
+_OPTION_NOTES = {
+    "writelog": "- no log file", "g": "- gravity (m/s^2)", "rho": "- water density (kg/m^3)",
+    "wtrdpth": "- water depth (m)", "kbot": "- seabed stiffness (Pa/m) = scene k / d",
+    "cbot": "- seabed damping (Pa-s/m) from the scene's fraction of critical",
+    "frictioncoefficient": "- seabed friction coefficient",
+    "currents": "- 1: steady current from current_profile.txt in this folder",
+    "tmaxic": "- max time of the IC generation (s)",
+    "threshic": "- IC convergence threshold (m/s^2)", "dtic": "- IC check interval (s)"}
+
+
+def _options(scene: Scene, deck: Deck, sec0: tuple, depth: float, notes: list[str],
+             ic: dict | None) -> dict:
+    d0, m0, *_ = sec0
+    opts = {"writelog": "0", "g": repr(scene.gravity), "rho": repr(scene.water_density),
+            "wtrdpth": repr(float(depth))}
+    if scene.seabed is None:
+        opts.update(kbot="0", cbot="0")
+        notes.append("The scene has no seabed: kBot = 0 (no contact).")
+    else:
+        k = scene.seabed.stiffness
+        opts["kbot"] = repr(k / d0)
+        # the same critical damping as the importer reads back: 2 zeta sqrt(k (m + m_a))
+        madd = sec0[5] * scene.water_density * math.pi / 4.0 * d0 * d0
+        opts["cbot"] = repr(2.0 * scene.seabed.damping * math.sqrt(k * (m0 + madd)) / d0)
+        if scene.seabed.friction:
+            opts["frictioncoefficient"] = repr(scene.seabed.friction)
+        if any(abs(lt.diameter - d0) > 1e-12 for lt in deck.line_types.values()):
+            notes.append("kBot = k / d of the bottom line; MoorDyn's contact per metre is "
+                         "kBot x d of each line, so another line on the seabed would have "
+                         "another stiffness there.")
+    if scene.current is not None:
+        opts["currents"] = "1"
+    for key, value in {**IC_OPTIONS, **(ic or {})}.items():
+        opts[key.lower()] = repr(float(value))
+    return opts
+
+
+def _current_profile(scene: Scene, depth: float) -> str:
+    """MoorDyn's current_profile.txt: three header lines, then 'z ux uy uz' rows."""
+    cur = scene.current
+    h = math.radians(cur.heading_deg)
+    lines = ["--------------------- MoorDyn steady currents File ---------------------",
+             f"Current of scene {scene.name}: speeds along heading {cur.heading_deg:g} deg, "
+             "piecewise linear in depth, constant beyond",
+             "z (m), ux (m/s), uy (m/s), uz (m/s)"]
+    for y, u in zip(cur.heights, cur.speeds):
+        lines.append(f"{y - depth!r} {u * math.cos(h)!r} {-u * math.sin(h)!r} 0.0")
+    return "\n".join(lines) + "\n"
+
+
+# ------------------------------------------------------------------ the deck's text
+def _g(v: float) -> str:
+    """A number written to full double precision (round-trips exactly), short when it can."""
+    return repr(float(v)) if v != int(v) or abs(v) >= 1e15 else str(int(v))
+
+
+def format_deck(deck: Deck, *, comments: list[str] = (), option_notes: dict | None = None
+                ) -> str:
+    """The text of a v2 deck. ``comments`` go into the front matter; ``option_notes`` maps
+    an option key to its description text."""
+    notes = option_notes or {}
+    out = ["--------------------- MoorDyn Input File ------------------------------------"]
+    out += [f for f in deck.front if f.strip() and not f.strip().startswith("---")]
+    out += [f"! {c}" if c else "!" for c in comments]
+    out.append("---------------------- LINE TYPES ----------------------------------------"
+               "----------------")
+    out.append("TypeName   Diam   Mass/m   EA   BA/-zeta   EI   Cd   Ca   CdAx   CaAx")
+    out.append("(name)     (m)    (kg/m)   (N)  (N-s/-)   (N-m^2) (-)  (-)  (-)    (-)")
+    for lt in deck.line_types.values():
+        out.append("  ".join([lt.name, _g(lt.diameter), _g(lt.mass), _g(lt.EA), lt.BA,
+                              _g(lt.EI), _g(lt.Cd), _g(lt.Ca), _g(lt.CdAx), _g(lt.CaAx)]))
+    out.append("---------------------- POINTS ------------------------------------------"
+               "-----")
+    out.append("ID   Attachment   X   Y   Z   Mass   Volume   CdA   Ca")
+    out.append("(#)  (-)          (m) (m) (m) (kg)   (m^3)    (m^2) (-)")
+    for p in deck.points:
+        out.append("  ".join([str(p.id), p.attachment, _g(p.x), _g(p.y), _g(p.z),
+                              _g(p.mass), _g(p.volume), _g(p.CdA), _g(p.Ca)]))
+    out.append("---------------------- LINES -------------------------------------------"
+               "-----")
+    out.append("ID   LineType   AttachA   AttachB   UnstrLen   NumSegs   LineOutputs")
+    out.append("(#)  (name)     (#)       (#)       (m)        (-)       (-)")
+    for ln in deck.lines:
+        out.append("  ".join([str(ln.id), ln.line_type, ln.attach_a, ln.attach_b,
+                              _g(ln.length), str(ln.segments), ln.outputs]))
+    out.append("---------------------- OPTIONS -----------------------------------------")
+    for k, (value, _) in deck.options.items():
+        key = OPTION_KEYS[k]
+        out.append(f"{value:<24} {key:<12} {notes.get(k, '')}".rstrip())
+    out.append("---------------------- OUTPUTS -----------------------------------------")
+    out += deck.outputs
+    out.append("------------------------- need this line --------------------------------")
+    return "\n".join(out) + "\n"

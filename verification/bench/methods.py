@@ -1,0 +1,60 @@
+"""The methods' bench (``riser-verify bench``, ``reports/bench/bench.json``): the VFIFE
+kernel per element-step for each effect and the solver on the Wang riser fixed at its
+hang-off (:mod:`vfife.bench`), the BVP on the Wang baseline and its Table 2 batch
+(:mod:`bvp.bench`), and the analytic method against the BVP on the single-section
+scenes, each pair timed in the same run (speed claims are ratios)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from riser.scene import Scene
+from riser.transform import fixed_ends_scene
+from verification.catalog import resolve
+
+#: the Wang et al. (2014) scenes: the baseline and its currents (the BVP's Table 2 batch)
+WANG_BASELINE = "wang2014-baseline"
+WANG_CURRENTS = ("wang2014-current-neg1p5", "wang2014-current-neg0p75",
+                 "wang2014-current-0p75", "wang2014-current-1p5")
+#: the single-section scenes the bench times with the analytic method and the BVP
+ANALYTIC_BENCH_SCENES = ("scr-steel", "kang2015-jlay")
+
+
+def bench_scene() -> Scene:
+    """The benchmark's scene: the Wang baseline fixed at the paper's hang-off point
+    (1625.0, 1586.3) m with 300 m of line on the default seabed (also the scene of a peer's
+    bench, ``bench --peer``)."""
+    return fixed_ends_scene(resolve(WANG_BASELINE), (1625.0, 1586.3), 300.0)
+
+
+def run(out: Path) -> dict:
+    """Time the three methods; writes ``out/bench.json`` (and the VFIFE's files beside it)
+    and returns its record."""
+    from analytic.bench import median_times as analytic_times
+    from bvp.bench import median_times as bvp_times
+    from bvp.bench import run_bench as bvp_bench
+    from vfife.bench import run_bench
+    bench = run_bench(out, bench_scene())
+    bench["bvp"] = bvp_bench(resolve(WANG_BASELINE), [resolve(n) for n in WANG_CURRENTS])
+    # the analytic method against the BVP on the same single-section scenes, side by side
+    single = [resolve(n) for n in ANALYTIC_BENCH_SCENES]
+    a_t, b_t = analytic_times(single), bvp_times(single)
+    bench["analytic"] = {n: {"analytic_s": a_t[n], "bvp_s": b_t[n], "bvp_over_analytic":
+                             b_t[n] / a_t[n]} for n in a_t}
+    (out / "bench.json").write_text(json.dumps(bench, indent=2) + "\n")
+    return bench
+
+
+def summary_lines(bench: dict) -> list[str]:
+    """The console's lines on a bench record (the VFIFE table first)."""
+    from vfife.bench import format_table
+    lines = [format_table(bench)]
+    for n, r in bench["analytic"].items():
+        lines.append(f"analytic: {n} {1e3 * r['analytic_s']:.2f} ms a solve (median), BVP "
+                     f"{r['bvp_s']:.3f} s: BVP / analytic = {r['bvp_over_analytic']:.0f}")
+    b = bench["bvp"]
+    lines.append(f"BVP: Wang baseline at tolerance 1e-6 {b['bvp_baseline_s']:.3f} s (median "
+                 f"of {b['bvp_baseline_runs']}, target < 0.5 s); Table 2 batch of "
+                 f"{b['bvp_table2_solves']} solves {b['bvp_table2_s']:.2f} s (target < 10 s)")
+    return lines

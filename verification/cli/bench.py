@@ -1,0 +1,76 @@
+"""``riser-verify bench``: the methods side by side (``bench.json``), or instead a peer
+against the VFIFE (``bench --peer NAME``) or the sweep throughput (``bench --sweep``)."""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+from verification import peers
+from verification.runtime import outdir
+
+from .common import progress_for
+
+
+def cmd_bench(args) -> int:
+    out = Path(args.out) if args.out else Path("reports") / "bench"
+    if args.peer:
+        return _bench_peer(args, out)
+    if args.sweep:
+        return _bench_sweep(args, out)
+    from verification.bench import methods
+    outdir.clear(out, outdir.BENCH)
+    record = methods.run(out)
+    for line in methods.summary_lines(record):
+        print(line)
+    print(f"wrote {out}/bench.json")
+    return 0
+
+
+def _bench_peer(args, out: Path) -> int:
+    """``bench --peer NAME``: OUT/NAME.json, beside bench.json (left alone)."""
+    from verification.bench.methods import bench_scene
+    peer = peers.peer(args.peer)
+    peer.require()
+    outdir.clear(out, (peer.bench_file,))
+    out.mkdir(parents=True, exist_ok=True)
+    with progress_for(args, f"bench --peer {peer.name}") as prog:
+        record = peer.bench(bench_scene(), log=prog.log)
+    (out / peer.bench_file).write_text(json.dumps(record, indent=2) + "\n")
+    for line in peer.bench_lines(record):
+        print(line)
+    print(f"wrote {out}/{peer.bench_file}")
+    return 0
+
+
+def _bench_sweep(args, out: Path) -> int:
+    """``bench --sweep [SWEEP]``: OUT/sweep.json."""
+    from verification.sweeps.bench import measure, summary_lines
+    from verification.sweeps.file import load_sweep
+    outdir.clear(out, outdir.BENCH_SWEEP)
+    sweep = load_sweep(args.sweep)
+    with progress_for(args, "bench --sweep") as prog:
+        record = measure(sweep, prog)
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "sweep.json").write_text(json.dumps(record, indent=2) + "\n")
+    for line in summary_lines(record):
+        print(line)
+    print(f"wrote {out}/sweep.json")
+    failed = [f"{k}: {e['error']}" for k, e in record["engines"].items() if "error" in e]
+    failed += [f"{k}: {e['cases_failed']} case(s) failed" for k, e in record["engines"].items()
+               if e.get("cases_failed")]
+    for f in failed:
+        print(f"error: bench --sweep: {f}", file=sys.stderr)
+    return 1 if failed else 0
+
+
+def add_parsers(sub) -> None:
+    s = sub.add_parser("bench", help="VFIFE kernel and solver benchmark")
+    s.add_argument("--out", help="output directory (default reports/bench)")
+    s.add_argument("--peer", choices=peers.names(), help="instead: VFIFE against a peer code "
+                   "on the same riser and mesh (PEER.json; the peer's optional extra)")
+    s.add_argument("--sweep", nargs="?", const="scr-envelope", help="instead: sweep "
+                   "throughput (cases per minute) with 1 and 2 local workers and a local Dask "
+                   "cluster of 2 workers (sweep.json; default: the built-in sweep scr-envelope)")
+    s.set_defaults(func=cmd_bench)

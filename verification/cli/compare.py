@@ -1,0 +1,85 @@
+"""``riser-verify compare SCENE [--peer NAME]`` and ``riser-verify modes SCENE``."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from riser.errors import SceneError
+from verification import peers
+from verification.catalog import resolve
+from verification.runtime import outdir
+
+from .common import check_overrides, out_folder, print_warnings, progress_for
+
+#: most modes per plane the ``modes`` command computes (the BVP refines each one)
+MAX_MODES = 50
+
+
+def cmd_compare(args) -> int:
+    from verification.comparison.protocol import compare, default_columns
+    from verification.comparison.report import write
+    files = outdir.COMPARE + tuple(f for name in peers.names() for f in peers.peer(name).files)
+    outdir.clear(args.out, files)
+    scene = resolve(args.scene)
+    out = out_folder(args, Path("out") / scene.name / "compare", files)
+    check_overrides(scene, args)
+    columns = default_columns()
+    if args.peer:
+        peer = peers.peer(args.peer)
+        columns += (peer.column(scene, segment_length=args.peer_segment_length),)
+        peer.require()                         # before solving: a clear message if missing
+    with progress_for(args, f"compare {scene.name}") as prog:
+        comp = compare(scene, element_length=args.element_length, columns=columns,
+                       folder=out, paper_model=not args.no_paper_model, progress=prog)
+    write(comp, out)
+    for r in comp.rows:
+        flag = "ok  " if r["pass"] else "FAIL"
+        rel = f"{100 * r['rel_diff']:+.4f} %" if r["rel_diff"] is not None else ""
+        diff = r["abs_diff"] if r["abs_diff"] is not None else float("nan")
+        print(f"  {flag} {r['quantity']:<22} |diff| {diff:.6g} {rel}")
+    for res in comp.columns.values():
+        for line in res.column.console(res):
+            print(line)
+    print(f"{scene.name}: {'PASS' if comp.passed else 'FAIL'}; wrote {out}/agreement.csv, "
+          "report.md")
+    warned = max(print_warnings(comp.bvp, args.strict), print_warnings(comp.vfife, args.strict))
+    return 0 if comp.passed and not warned and comp.columns_ok else 1
+
+
+def cmd_modes(args) -> int:
+    from verification.comparison import modes
+    outdir.clear(args.out, modes.FILES)
+    if not 1 <= args.count <= MAX_MODES:
+        raise SceneError("command line", "--count", f"must be between 1 and {MAX_MODES} (modes "
+                         f"per plane), got {args.count}")
+    scene = resolve(args.scene)
+    out = out_folder(args, Path("out") / scene.name / "modes", modes.FILES)
+    with progress_for(args, f"modes {scene.name}") as prog:
+        run = modes.run_modes(scene, args.count, out, progress=prog)
+    for line in modes.summary_lines(run):
+        print(line)
+    return 0 if run.all_meet else 1
+
+
+def add_parsers(sub) -> None:
+    s = sub.add_parser("compare", help="solve a scene with both methods and compare them")
+    s.add_argument("scene", help="built-in scene name or path to a .toml scene file")
+    s.add_argument("--out", help="output directory (default out/SCENE/compare)")
+    s.add_argument("--element-length", type=float, help="vfife element length [m]")
+    s.add_argument("--no-paper-model", action="store_true",
+                   help="skip the secondary comparison with the BVP's paper model (inextensible "
+                        "line on a rigid seabed), which is not part of the verdict")
+    s.add_argument("--strict", action="store_true",
+                   help="exit 1 when either method's result carries warnings")
+    s.add_argument("--peer", choices=peers.names(), help="add a peer code's profile as a "
+                   "further column, not in the verdict (each peer is an optional extra: "
+                   "pip install -e '.[NAME]')")
+    s.add_argument("--peer-segment-length", type=float, default=10.0,
+                   help="the peer's segment length [m] (default 10)")
+    s.set_defaults(func=cmd_compare)
+    s = sub.add_parser("modes", help="natural modes about the static state, both methods")
+    s.add_argument("scene", help="built-in scene name or path to a .toml scene file")
+    s.add_argument("--count", type=int, default=10,
+                   help="modes per plane (in-plane and out-of-plane; default 10)")
+    s.add_argument("--out", help="output directory (default out/SCENE/modes)")
+    s.set_defaults(func=cmd_modes)

@@ -1,0 +1,142 @@
+"""Agreement tolerances of the VFIFE-vs-BVP comparison protocol: the one place they live.
+
+Both methods solve the same continuum model (extensible line on a unilateral Winkler
+seabed of the scene's stiffness; see :mod:`verification.comparison.protocol`), so a tolerance only
+has to cover the discretisation of each method, not a model difference. Each entry is
+(kind, value):
+
+- ``of_depth``: a fraction of the water depth (the hang-off height when the scene gives
+  no depth);
+- ``of_T_max`` / ``of_M_max``: a fraction of the largest BVP effective tension / bending
+  moment along the line;
+- ``rel``: a fraction of the BVP value of the quantity itself;
+- ``abs``: absolute, in the quantity's unit (m or deg).
+
+The relative difference of a row (``rel_diff`` of ``agreement.csv``) is the signed
+(VFIFE - BVP) / basis with the same basis as its tolerance; absolute lengths are
+normalised by the depth, absolute angles have no relative form.
+
+TARGETS AND MEASUREMENT
+-----------------------
+The issue's targets at the default element length are upper bounds: configuration 0.02 %
+of depth, tension 0.1 % of T_max, moment profile 0.5 % of M_max, touchdown x 0.5 m; no
+value below is looser. The profile rows are the targets themselves; every scalar row is
+the measured worst value times a stated margin (about 2-3: VFIFE stops its static
+relaxation at a residual of 1e-3 of an element weight, so its results move by a fraction
+of the measured difference from one build or mesh to the next), and never looser than
+the profile target it is a point of. MEASURED (issue 11, ``/tmp/measure_compare.py``):
+the 11 planar built-in scenes and the hard scenes that both methods solve (statics only,
+[dynamics] dropped), at the default element length, 1 m; hard-coarse-elements (20 m),
+hard-large-heave (2 m) and hard-long-dynamic (5 m) at 1 m (the same line as the Wang
+baseline), hard-flexible's moment rows left out (EI = 1e3 N m2: the moment boundary
+layers, sqrt(EI/T) ~ 0.07 m, are far below any practical element; a stability case).
+Worst value of each row and its scene are quoted below. The profile metrics are taken
+at the VFIFE nodes with the BVP tension put through VFIFE's nodal average (see
+:mod:`verification.comparison.protocol`). Reasons: VFIFE positions and tension converge at least
+as fast as the second order in the element length (Yu A1: configuration 0.0135 % ->
+0.0022 % of depth from 1 m to 0.5 m); its moment, from element end rotations, carries a
+first-order error at the sharpest moment peak, the seabed lift-off (foundation length
+(4 EI/k)^(1/4) = 4.4 m on the Wang pipe, ~4 elements).
+"""
+
+from __future__ import annotations
+
+import re
+
+TOLERANCES = {
+    # Configuration: largest point-to-curve distance between the two lines. The target,
+    # 0.02 % of depth. Measured worst 0.0135 % (Yu A1, 0.068 m of 500 m; 0.0022 % at
+    # 0.5 m elements), Wang forms 0.0009-0.0016 %. A 5 % buoyancy change: 56x this.
+    "configuration": ("of_depth", 2.0e-4),
+    # rms of the same distance over the compared range: half the target. Measured worst
+    # 0.0068 % (Yu A1).
+    "configuration_rms": ("of_depth", 1.0e-4),
+    # Effective tension at the VFIFE nodes. The target, 0.1 % of T_max. Measured worst
+    # 0.018 % (Yu A1); 0.004 % on the Wang baseline.
+    "tension": ("of_T_max", 1.0e-3),
+    # Signed in-plane bending moment at the VFIFE nodes. The target, 0.5 % of M_max.
+    # Measured worst 0.45 % (hard-slack-touchdown, at the lift-off), 0.43 % hard-many-buoys,
+    # 0.37 % Wang baseline: the first-order moment error of 1 m elements at the lift-off;
+    # the margin is thin (a scene that needs more gets a shorter [vfife] element_length,
+    # never a looser tolerance).
+    "moment": ("of_M_max", 5.0e-3),
+    # Scalars. Hang-off tension, relative to itself: measured worst 2.8e-5 (Yu A2
+    # sheared); x3.5 -> 1e-4.
+    "hang_off_tension": ("rel", 1.0e-4),
+    # with [internal_flow]: the wall tension is the effective tension plus terms both
+    # methods evaluate alike (mu U^2, pressures at the hang-off height): the hang-off
+    # tension's tolerance (measured 4.9e-5 on liu2021-scr with steady flow at 4 m elements)
+    "hang_off_wall_tension": ("rel", 1.0e-4),
+    # deg: measured worst 0.016 deg (Yu A1; 0.0008 deg at 0.5 m), 0.008 deg Yu A3, Wang
+    # forms <= 0.0016 deg; x1.9 -> 0.03 deg (half the drag: 66x this).
+    "hang_off_angle_deg": ("abs", 0.03),
+    # m: measured worst 0.109 m (hard-slack-touchdown), 0.095 m hard-many-buoys, 0.025 m
+    # Wang baseline (lift-off interpolated between 1 m nodes); x2.3 -> 0.25 m, inside the
+    # 0.5 m target.
+    "tdp_x": ("abs", 0.25),
+    # touchdown (lift-off) tension: measured worst 8.1e-5 of T_max (hard-many-buoys);
+    # x2.5 -> 2e-4 of T_max.
+    "tdp_tension": ("of_T_max", 2.0e-4),
+    # heights of crests and sag bends: points of the configuration, its target. Measured
+    # worst 9.6e-5 of depth (Yu A1 crest), sags 7.6e-5 (Yu A3): margin x2.1.
+    "crest_height": ("of_depth", 2.0e-4),
+    "sag_height": ("of_depth", 2.0e-4),
+    # m; arc length of a crest/sag (parabolic vertex of the height): measured worst
+    # 0.009 m (crests) and 0.015 m (sags, hard-slack-touchdown); x3.3 -> 0.05 m.
+    "crest_s": ("abs", 0.05),
+    "sag_s": ("abs", 0.05),
+    # the largest moment: measured worst 0.095 % of M_max (Yu A1); x2.1 -> 0.2 %.
+    "max_moment": ("of_M_max", 2.0e-3),
+    # m; location of the largest moment (parabolic vertex; peaks within the max_moment
+    # tolerance of the maximum count as ties, see compare.peak_location_distance).
+    # Measured worst 0.080 m (scr-steel); x2.5 -> 0.2 m.
+    "max_moment_s": ("abs", 0.2),
+}
+
+#: unit of each quantity (the name with its digits removed: crest2_height -> crest_height)
+UNITS = {
+    "configuration": "m", "configuration_rms": "m", "tension": "N", "moment": "N m",
+    "hang_off_tension": "N", "hang_off_wall_tension": "N", "hang_off_angle_deg": "deg",
+    "tdp_x": "m", "tdp_tension": "N",
+    "crest_height": "m", "sag_height": "m", "crest_s": "m", "sag_s": "m",
+    "max_moment": "N m", "max_moment_s": "m", "crests_count": "-", "sags_count": "-",
+}
+
+_BASIS_LABEL = {"of_depth": "depth", "of_T_max": "T_max", "of_M_max": "M_max",
+                "rel": "itself"}
+
+
+def base_name(name: str) -> str:
+    """The tolerance key of a row: digits removed (crest2_height -> crest_height)."""
+    return re.sub(r"\d+", "", name)
+
+
+def unit(name: str) -> str:
+    return UNITS.get(base_name(name), "")
+
+
+def tolerance(name: str, *, bvp_value: float | None = 0.0, depth: float = 1.0,
+              max_tension: float = 1.0, max_moment: float = 1.0) -> dict:
+    """Tolerance of row ``name`` for a scene with these scales.
+
+    Returns ``{"tol": absolute tolerance in the unit of the quantity, "label": e.g.
+    '0.5 % of M_max', "basis": the value that normalises the relative difference (None
+    when there is none), "basis_label": e.g. 'M_max'}``."""
+    kind, value = TOLERANCES[base_name(name)]
+    u = unit(name)
+    if kind == "abs":
+        # an absolute tolerance has no basis: the row's difference stays in its unit, the
+        # same normalisation as its tolerance (no relative difference is reported)
+        return {"tol": value, "label": f"{value:g} {u}", "basis": None, "basis_label": ""}
+    basis = {"of_depth": depth, "of_T_max": max_tension, "of_M_max": max_moment,
+             "rel": abs(bvp_value or 0.0)}[kind]
+    return {"tol": value * basis, "label": f"{100 * value:g} % of {_BASIS_LABEL[kind]}",
+            "basis": basis if basis else None, "basis_label": _BASIS_LABEL[kind]}
+
+
+def tolerance_value(name: str, *, bvp_value: float = 0.0, depth: float = 1.0,
+                    max_tension: float = 1.0, max_moment: float = 1.0) -> tuple[float, str]:
+    """(absolute tolerance, description) for quantity ``name`` (see :func:`tolerance`)."""
+    t = tolerance(name, bvp_value=bvp_value, depth=depth, max_tension=max_tension,
+                  max_moment=max_moment)
+    return t["tol"], t["label"]

@@ -1,0 +1,93 @@
+"""MoorDyn decks in and out for the command line and the MoorDyn peer: the scene a deck
+becomes, and the deck of any scene (a touchdown-form scene converted to fixed ends first,
+exactly as both methods solve it, :func:`verification.pipeline.vfife_equivalent`)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from riser.errors import SceneError
+from riser.io.moordyn.deck_from_scene import ExportedDeck, export_scene
+from riser.scene import Scene
+from verification import pipeline
+
+
+def check_segment_length(value: float | None, option: str, scene) -> None:
+    """A MoorDyn segment length given as ``option`` [m]: 0.01-1000 m and at least ten
+    segments over the line (MoorDyn's tolerances are stated per segment length); raises a
+    one-line :class:`SceneError` naming the option (exit 2, before anything runs)."""
+    if value is None:
+        return
+    top = min(1000.0, scene.total_length / 10.0)
+    if not 0.01 <= value <= top:
+        raise SceneError("command line", option, f"must be between 0.01 and {top:g} m (at "
+                         f"least ten segments over the {scene.total_length:g} m line), got "
+                         f"{value:g}")
+
+
+@dataclass
+class DeckFiles:
+    """An exported deck: the fixed-ends scene it describes, the export, the files written
+    (the deck, and current_profile.txt beside it with a current), the arc-length shift
+    [m] from the fixed-ends scene back to the original scene's s (0 for fixed ends), and
+    where the joints' initial positions came from."""
+
+    scene: Scene
+    export: ExportedDeck
+    deck_path: Path | None
+    profile_path: Path | None
+    s_shift: float
+    joints_from: str
+
+
+def fixed_scene(scene: Scene) -> tuple[Scene, float, str]:
+    """(the fixed-ends scene MoorDyn solves, the arc-length shift, the conversion note)."""
+    if scene.ends.kind == "fixed":
+        return scene, 0.0, ""
+    eq = pipeline.vfife_equivalent(scene)
+    return eq.scene, eq.s_shift, eq.note
+
+
+def joint_guess(scene: Scene, spans, profile=None) -> tuple[list | None, str]:
+    """Scene (x, y, z) of the joints between MoorDyn lines, from ``profile`` (a solved
+    profile of the fixed-ends scene) or a BVP solve of it; (None, reason) when neither is
+    available (the export then puts them on the chord)."""
+    if len(spans) < 2:
+        return None, "no joints"
+    how = "the given profile"
+    if profile is None:
+        res = pipeline.solve_scene(scene, "bvp")
+        if not res.converged:
+            return None, f"the chord (the BVP did not converge: {res.status.value})"
+        profile, how = res.profile, "the BVP solution"
+    s = np.array([a for a, _ in spans[1:]])
+    pts = [tuple(float(np.interp(si, profile.s, getattr(profile, c))) for c in "xyz")
+           for si in s]
+    return pts, how
+
+
+def export(scene: Scene, path: Path | None, *, segment_length: float | None = None,
+           profile=None, hang_off: str = "Fixed", ic: dict | None = None) -> DeckFiles:
+    """Export ``scene`` (any end form) and, when ``path`` is given, write the deck there and
+    current_profile.txt beside it (MoorDyn reads it from the deck's folder)."""
+    fixed, shift, note = fixed_scene(scene)
+    first = export_scene(fixed, segment_length=segment_length, hang_off=hang_off, ic=ic)
+    joints, how = joint_guess(fixed, first.line_span, profile)
+    notes = [f"Converted from the '{scene.ends.kind}' form: {note}"] if note else []
+    if len(first.line_span) > 1:
+        notes.append(f"The free points start from {how}.")
+    ex = export_scene(fixed, segment_length=segment_length, joints=joints, hang_off=hang_off,
+                      ic=ic, notes=tuple(notes))
+    deck_path = profile_path = None
+    if path is not None:
+        path = Path(path)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(ex.text)
+        deck_path = path
+        if ex.current_profile is not None:
+            profile_path = path.parent / "current_profile.txt"
+            profile_path.write_text(ex.current_profile)
+    return DeckFiles(fixed, ex, deck_path, profile_path, shift, how)

@@ -1,0 +1,98 @@
+"""The plots and the console summary of a VFIFE dynamic run (``riser-verify solve`` of a
+scene with ``[dynamics]``): ``timeseries.png`` and ``envelope.png`` beside the CSV files.
+
+Units in the figures and lines: kN, kN m, m, s (the files hold SI: N, N m).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from riser.result import DynamicsResult
+
+from .figures import new_figure, save
+
+#: the figures written beside timeseries.csv and envelope.csv
+FILES = ("timeseries.png", "envelope.png")
+
+
+def write_plots(dyn: DynamicsResult, out: Path, title: str, start: float) -> None:
+    """Time series (hang-off tension, touchdown, minimum tension, peak moment, hang-off
+    position) and envelopes along s into ``out``; ``start`` [s] marks the statistics
+    window's start."""
+    ts, env = dyn.timeseries, dyn.envelope
+    t = ts["time"]
+    fig, ax = new_figure(3, 2, size=(11.0, 8.5))
+    panels = [
+        (ax[0, 0], [("hang_off_tension", 1e-3, "hang-off")], "effective tension [kN]"),
+        (ax[0, 1], [("touchdown_s", 1.0, "touchdown")], "touchdown arc length s [m]"),
+        (ax[1, 0], [("min_tension", 1e-3, "minimum along the line"),
+                    ("touchdown_tension", 1e-3, "at the touchdown")], "effective tension [kN]"),
+        (ax[1, 1], [("max_moment", 1e-3, "peak along the line")], "bending moment [kN m]"),
+        (ax[2, 0], [("hang_off_x", 1.0, "x"), ("hang_off_y", 1.0, "y"),
+                    ("hang_off_z", 1.0, "z")], "hang-off position - start [m]"),
+        (ax[2, 1], [("max_moment_s", 1.0, "peak moment"), ("min_tension_s", 1.0,
+                                                           "minimum tension")],
+         "where along the line, s [m]"),
+    ]
+    for a, series, label in panels:
+        drawn = 0
+        for key, f, name in series:
+            v = np.asarray(ts[key], float) * f
+            if key.startswith("hang_off_") and key[-1] in "xyz":
+                v = v - v[0]
+            if np.any(np.isfinite(v)):
+                a.plot(t, v, label=name, lw=1.0)
+                drawn += 1
+        if not drawn:
+            a.text(0.5, 0.5, "no seabed contact", ha="center", va="center",
+                   transform=a.transAxes)
+        if start > 0.0:
+            a.axvline(start, color="0.5", ls="--", lw=0.8)
+        a.set_xlabel("time t [s]")
+        a.set_ylabel(label)
+        a.grid(alpha=0.3)
+        if drawn > 1:
+            a.legend(fontsize=8)
+    fig.suptitle(f"{title}: time series (dashed: statistics start, {start:g} s)")
+    save(fig, out / "timeseries.png")
+
+    s = env["s"]
+    fig, ax = new_figure(3, 1, size=(9.0, 8.5))
+    ax[0, 0].fill_between(s, env["tension_min"] / 1e3, env["tension_max"] / 1e3, alpha=0.4,
+                          label="min to max")
+    ax[0, 0].axhline(0.0, color="k", lw=0.6)
+    ax[0, 0].set_ylabel("effective tension [kN]")
+    ax[1, 0].plot(s, env["moment_max"] / 1e3)
+    ax[1, 0].set_ylabel("max bending moment [kN m]")
+    ax[2, 0].plot(s, env["curvature_max"])
+    ax[2, 0].set_ylabel("max curvature [1/m]")
+    for a in ax[:, 0]:
+        a.grid(alpha=0.3)
+        a.set_xlabel("arc length s from the bottom end [m]")
+    fig.suptitle(f"{title}: envelopes from t = {start:g} s")
+    save(fig, out / "envelope.png")
+
+
+def summary_lines(sm: dict) -> list[str]:
+    """The console lines of a dynamic run's extremes (from summary.json's ``dynamic_*``
+    keys), over the statistics window."""
+    if "dynamic_max_hang_off_tension" not in sm:
+        return []
+    lines = [f"  dynamics, statistics from t = {sm['statistics_start']:g} to "
+             f"{sm['statistics_end']:g} s (effects: {', '.join(sm.get('effects', []))}):",
+             f"    hang-off tension {sm['dynamic_min_hang_off_tension'] / 1e3:.2f} to "
+             f"{sm['dynamic_max_hang_off_tension'] / 1e3:.2f} kN (range "
+             f"{sm['dynamic_hang_off_tension_range'] / 1e3:.2f} kN)",
+             f"    max moment {sm['dynamic_max_moment'] / 1e3:.3f} kN m at s = "
+             f"{sm['dynamic_max_moment_s']:.1f} m (t = {sm['dynamic_max_moment_time']:.2f} s)",
+             f"    min tension {sm['dynamic_min_tension'] / 1e3:.2f} kN at s = "
+             f"{sm['dynamic_min_tension_s']:.1f} m (t = {sm['dynamic_min_tension_time']:.2f} s)"]
+    if "dynamic_min_touchdown_s" in sm:
+        lines.append(f"    touchdown s from {sm['dynamic_min_touchdown_s']:.1f} to "
+                     f"{sm['dynamic_max_touchdown_s']:.1f} m")
+    lines.append(f"    {sm['dynamic_steps']} steps of {sm['dynamic_time_step']:.3g} s, "
+                 f"{sm['realtime_factor']:.3g} x real time")
+    return lines

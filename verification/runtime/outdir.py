@@ -1,0 +1,104 @@
+"""Output folders: a run never leaves another run's results beside its own.
+
+Every command that writes into a folder first removes the files *it* writes (the names
+below, and nothing else: a foreign file in the folder is kept, the folder itself is never
+removed), before it reads its input. So a run that is refused (exit 2), fails (exit 1) or
+is interrupted leaves no profile, table or report of an earlier run that could be taken
+for its own; a failed solve still writes a ``summary.json`` stating the failure
+(:meth:`riser.result.SolveResult.write`).
+
+The lists are checked against what the commands write (``tests/test_input_hygiene.py``
+compares them with the committed ``reports/`` folders and a real solve): a new output file
+must be added here.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from riser.errors import SceneError
+
+#: ``solve``: one result (SolveResult.write; the rest: a VFIFE dynamic run, its plots, and
+#: states.npz with ``[dynamics] save_states``)
+SOLVE = ("profile.csv", "summary.json", "timeseries.csv", "envelope.csv", "states.npz",
+         "timeseries.png", "envelope.png")
+#: ``compare`` (and each scene folder of ``reproduce compare``): the protocol's files and
+#: one solve folder per method and for the analytic column (a peer's column adds its own
+#: files: ``verification.peers.Peer.files``)
+COMPARE = ("agreement.csv", "report.md", "configurations.png", "forces.png", "differences.png",
+           *(f"{sub}/{name}" for sub in ("bvp", "vfife", "analytic", "bvp_paper_model")
+             for name in SOLVE))
+#: ``cost`` (and each scene folder of ``reproduce cost``)
+COST = ("runs.csv", "values.csv", "report.md", "error_vs_time.png",
+        "error_vs_element_length.png", "time_vs_elements.png", "dynamics.csv",
+        "dynamics_error.png")
+#: ``modes`` (and each scene folder of ``reproduce modes``)
+MODES = ("modes.csv", "agreement.csv", "report.md", "mode_shapes_in_plane.png",
+         "mode_shapes_out_of_plane.png")
+#: ``stress`` and ``reproduce stress``
+STRESS = ("summary.csv", "report.md")
+#: ``bench``
+BENCH = ("bench.json",)
+#: ``bench --sweep``: the sweep throughput of the engines
+BENCH_SWEEP = ("sweep.json",)
+#: the files of each study of ``reproduce`` in its folder (compare and cost: in each
+#: unit's subfolder ``NAME/SCENE``)
+STUDY_FILES = {
+    "wang2014": ("table2.csv", "drag_fit.csv", "vfife_matched.csv", "configurations.png",
+                 "forces.png", "report.md"),
+    "yu2021": ("table.csv", "report.md", "layout.png", "gap.png", "buoyancy_loss.png",
+               "current.png", "moved_up.png", "dynamics.csv", "dynamics.png"),
+    "liu2021": ("table.csv", "report.md", "top_tension.png", "static.png", "moments.png",
+                "slug_length.png"),
+    "kang2015": ("table.csv", "piecewise.csv", "epsilon.csv", "report.md", "base.png",
+                 "matched.png", "families.png", "epsilon.png"),
+    "compare": COMPARE,
+    "stress": STRESS,
+    "cost": COST,
+    "modes": MODES,
+}
+
+
+def clear(folder: str | Path | None, names: tuple[str, ...]) -> list[Path]:
+    """Remove the files ``names`` (paths relative to ``folder``) left by an earlier run, and
+    the subfolders among them that this leaves empty; returns the removed files.
+
+    ``folder`` None (the command's default folder, not known yet) or missing: nothing to
+    do. Raises :class:`SceneError` (exit 2, before any solving) when ``folder`` is not a
+    folder or a stale file cannot be removed, so no old result survives unnoticed.
+    """
+    if folder is None:
+        return []
+    base = Path(folder)
+    if not base.exists():
+        return []
+    if not base.is_dir():
+        raise SceneError(str(base), "--out", "is a file, not a folder: give a folder for the "
+                         "results (it is created if missing)")
+    removed = []
+    subfolders = set()
+    for name in names:
+        p = base / name
+        if p.parent != base:
+            subfolders.add(p.parent)
+        if p.is_symlink() or p.is_file():
+            try:
+                p.unlink()
+            except OSError as exc:
+                raise SceneError(str(base), "--out", f"cannot remove {name} of an earlier run "
+                                 f"({exc.strerror or exc}); remove it or choose another "
+                                 "folder") from None
+            removed.append(p)
+    for sub in sorted(subfolders, key=lambda q: -len(q.parts)):
+        try:
+            sub.rmdir()                     # only when empty: foreign files keep it
+        except OSError:
+            pass
+    return removed
+
+
+def clear_unit(study: str, unit: str | None, study_folder: str | Path) -> list[Path]:
+    """Clear what one unit of ``reproduce`` writes: ``study_folder/unit`` for the studies
+    with a folder per scene (compare, cost, modes), else ``study_folder``."""
+    folder = Path(study_folder) / unit if unit is not None else Path(study_folder)
+    return clear(folder, STUDY_FILES[study])

@@ -1,0 +1,66 @@
+"""The comparison study of ``riser-verify reproduce compare``: every built-in scene but the
+hard cases (the stress suite's) compared by the protocol of
+:mod:`verification.comparison.protocol`, one unit per scene into
+``reports/compare/SCENE/`` (the files of ``riser-verify compare``)."""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import pandas as pd
+
+from riser.errors import SolveFailed
+from verification.catalog import resolve
+from verification.comparison.protocol import compare
+from verification.comparison.report import write
+from verification.report.markdown import pct
+
+from .study import Study
+
+#: scenes with a comparison report in reports/compare/ (every built-in scene but the hard
+#: cases, which are the stress suite's)
+COMPARE_SCENES = ("wang2014-baseline", "wang2014-current-neg1p5", "wang2014-current-neg0p75",
+                  "wang2014-current-0p75", "wang2014-current-1p5", "scr-steel",
+                  "yu2021-a1", "yu2021-a2", "yu2021-a2-sheared", "yu2021-a3", "yu2021-a4",
+                  "kang2015-jlay")
+
+
+def run_unit(scene_name: str, out: Path, note: str = "", full: bool = False) -> str:
+    """Compare one built-in scene into ``out/scene_name`` (``note``, ``full``: unused, the
+    comparison has no timings to qualify and no dear part); returns the log line."""
+    t0 = time.perf_counter()
+    try:
+        comp = compare(resolve(scene_name))
+    except SolveFailed as exc:
+        return f"compare {scene_name}: {exc}"
+    write(comp, out / scene_name)
+    return (f"compare {scene_name}: {'PASS' if comp.passed else 'FAIL'} "
+            f"({time.perf_counter() - t0:.1f} s)")
+
+
+def index_row(d: Path):
+    """(cases, worst agreement, verdict) of one scene's comparison directory."""
+    if not (d / "agreement.csv").exists():
+        return None
+    df = pd.read_csv(d / "agreement.csv")
+    failed = df[~df["pass"].astype(bool)].quantity.tolist()
+    rows = df.set_index("quantity")
+    bases = {"configuration": "of depth", "tension": "of T_max", "moment": "of M_max"}
+    text = ", ".join(f"{q} {pct(rows.loc[q, 'rel_diff'], 2)} {bases[q]}" for q in bases
+                     if q in rows.index)
+    if "tdp_x" in rows.index:
+        tdp = rows.loc["tdp_x"]
+        text += f", touchdown {tdp['vfife'] - tdp['bvp']:+.3f} m"
+    if failed:
+        text += f"; outside tolerance: {', '.join(failed)}"
+    return "1 scene", text, "pass" if not failed else "fail"
+
+
+#: measured wall times [s] of the units in ``reproduce all`` (2 processes, 2 cores)
+STUDY = Study("compare", COMPARE_SCENES, run_unit, index_row,
+              seconds={"yu2021-a4": 12, "wang2014-current-neg1p5": 7, "wang2014-current-neg0p75": 7,
+                       "wang2014-current-0p75": 7, "wang2014-current-1p5": 7, "yu2021-a2": 6,
+                       "yu2021-a2-sheared": 6, "yu2021-a3": 5, "wang2014-baseline": 4,
+                       "yu2021-a1": 2, "scr-steel": 2, "kang2015-jlay": 6})
+

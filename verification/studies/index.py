@@ -1,0 +1,28 @@
+"""``reports/README.md``: one line per report directory, read back from its CSV files by
+the study that wrote it (:data:`verification.studies.STUDIES`)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from verification.report.markdown import GENERATED_NOTE, md_table
+
+from . import STUDIES, study
+
+
+def write_index(reports: Path = Path("reports")) -> Path:
+    rows = []
+    for d in sorted(p for p in reports.rglob("*") if p.is_dir()):
+        rel = d.relative_to(reports)
+        row = study(rel.parts[0]).index_row(d) if rel.parts[0] in STUDIES else None
+        if row is not None:
+            rows.append((f"[{rel}]({rel}/report.md)", *row))
+    text = "\n".join([
+        "# Verification reports", "", GENERATED_NOTE, "",
+        "Regenerate everything with `riser-verify reproduce all`. Each line: the study, its "
+        "cases, the worst agreement and the verdict against the stated tolerances.", "",
+        md_table(["study", "cases", "worst agreement", "verdict"], rows), "",
+    ])
+    path = reports / "README.md"
+    path.write_text(text)
+    return path

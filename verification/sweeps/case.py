@@ -1,0 +1,197 @@
+"""One load case of a sweep: solved in a worker, its files written by the process that
+submitted it.
+
+:func:`run_case` is what a worker runs (a local process or a Dask worker on another
+machine): it touches no file, validates the case's scene from its parsed TOML, solves it
+with each method as ``riser-verify solve`` would, and returns a plain record (JSON types
+and lists of floats), so that the same code gives the same numbers on any engine and
+needs no shared file system. :func:`write_case` stores a record in the case's own folder
+(``cases/NNNN/``: ``scene.toml``, ``case.json``, and per method ``METHOD/summary.json``
+and, when it converged, ``METHOD/profile.csv`` and ``METHOD/profile.npz``); ``case.json`` is written last, under a temporary name renamed into
+place, so that its presence means the case finished (the resume test of
+:func:`read_case`). A case that raised an unexpected error records status ``error`` and
+is run again by the next sweep; the methods' own statuses (converged, refused,
+not_converged, ...) are final.
+
+The method agreement of a case is the protocol of ``riser-verify compare``
+(:func:`verification.comparison.agreement.agreement`: the same rows, tolerances and bases) on the two
+profiles, assessed when both converged on the same continuum model (``SolveResult.model``):
+a Wang-form scene's BVP solves its paper model when the VFIFE cannot, and then the
+difference is a model difference, not a defect.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import socket
+import time
+import traceback
+from pathlib import Path
+
+import numpy as np
+
+from riser.errors import SceneError, SolveFailed, UnsupportedSceneError
+from riser.profile import Profile, summarize, write_json
+
+#: the scalar summary quantities kept per method (riser.profile.summarize's names)
+SUMMARY_KEYS = ("hang_off_tension", "hang_off_angle_deg", "max_tension", "max_tension_s",
+                "min_tension", "max_moment", "max_moment_s", "max_shear", "tdp_x",
+                "tdp_tension", "span", "length")
+#: the agreement rows copied into cases.csv, besides the worst row: their rel_diff (over
+#: the row's basis), and for the touchdown its difference in metres (its tolerance is a
+#: length, not a fraction)
+AGREEMENT_KEYS = ("configuration", "tension", "moment", "hang_off_tension", "max_moment")
+AGREEMENT_DIFF_KEYS = ("tdp_x",)
+_FIELDS = ("s", "x", "y", "z", "theta", "tension", "moment", "shear", "curvature")
+ERROR = "error"
+
+
+def _profile_lists(p: Profile) -> dict:
+    out = {name: np.asarray(getattr(p, name), float).tolist() for name in _FIELDS}
+    out["tdp_s"] = p.tdp_s
+    out["wall_tension"] = None if p.wall_tension is None else p.wall_tension.tolist()
+    return out
+
+
+def profile_of(d: dict) -> Profile:
+    """The :class:`Profile` of a record's lists (:func:`_profile_lists`)."""
+    return Profile(**{name: np.asarray(d[name], float) for name in _FIELDS},
+                   tdp_s=d["tdp_s"], wall_tension=None if d.get("wall_tension") is None
+                   else np.asarray(d["wall_tension"], float))
+
+
+def _solve(scene, method: str) -> tuple[dict, object]:
+    from verification.pipeline import solve_scene
+    t0 = time.perf_counter()
+    try:
+        res = solve_scene(scene, method)
+    except (SceneError, UnsupportedSceneError) as exc:
+        return {"status": "refused", "message": str(exc), "warnings": [],
+                "wall_time_s": time.perf_counter() - t0}, None
+    except SolveFailed as exc:
+        return {"status": exc.status.value, "message": str(exc), "warnings": [],
+                "wall_time_s": time.perf_counter() - t0}, None
+    rec = {"status": res.status.value, "message": res.message, "warnings": list(res.warnings),
+           "wall_time_s": res.wall_time_s, "model": dict(res.model)}
+    if res.converged and res.profile is not None:
+        sm = summarize(res.profile)
+        rec["summary"] = {k: sm.get(k) for k in SUMMARY_KEYS}
+        rec["profile"] = _profile_lists(res.profile)
+    return rec, res
+
+
+def _agreement(scene, results: dict) -> dict:
+    from verification.comparison.agreement import agreement
+    from verification.quantities import reference_depth
+    b, v = results.get("bvp"), results.get("vfife")
+    if b is None or v is None or not b.converged or not v.converged:
+        return {"assessed": False, "reason": "a method did not converge"}
+    if dict(b.model) != dict(v.model):
+        return {"assessed": False, "reason": f"different models: bvp {dict(b.model)}, "
+                f"vfife {dict(v.model)}"}
+    depth = reference_depth(scene, b.summary())
+    rows = agreement(b.profile, v.profile, depth)
+    keep = ("quantity", "bvp", "vfife", "diff", "rel_diff", "tolerance", "pass", "at_s",
+            "basis_label", "tol_label")
+    rows = [{k: (r.get(k).item() if isinstance(r.get(k), np.generic) else r.get(k))
+             for k in keep} for r in rows]
+    ratios = [(abs(r["diff"]) / r["tolerance"] if r["tolerance"] else
+               (0.0 if r["pass"] else float("inf")), r["quantity"])
+              for r in rows if r["diff"] is not None]
+    worst = max(ratios) if ratios else (float("nan"), "")
+    return {"assessed": True, "passed": all(r["pass"] for r in rows), "rows": rows,
+            "worst_ratio": worst[0], "worst_quantity": worst[1]}
+
+
+def run_case(spec: dict) -> dict:
+    """Solve one case. ``spec``: ``index``, ``digest``, ``scene`` (the parsed scene TOML),
+    ``methods``. Never raises: an unexpected error becomes status ``error`` with its
+    reason. Plain arguments and result, so that any worker process can run it."""
+    from riser.io.scene_file import scene_from_dict
+    t0 = time.perf_counter()
+    rec = {"index": spec["index"], "digest": spec["digest"], "methods": {},
+           "worker": f"{socket.gethostname()}:{os.getpid()}"}
+    try:
+        scene = scene_from_dict(spec["scene"], f"case {spec['index']}")
+        results = {}
+        for method in spec["methods"]:
+            rec["methods"][method], results[method] = _solve(scene, method)
+        if {"bvp", "vfife"} <= set(spec["methods"]):
+            rec["agreement"] = _agreement(scene, results)
+    except Exception as exc:                  # the case fails, never the sweep
+        where = traceback.extract_tb(exc.__traceback__)[-1]
+        reason = (f"{type(exc).__name__}: {exc} (at {Path(where.filename).name}:"
+                  f"{where.lineno})")
+        for method in spec["methods"]:
+            rec["methods"].setdefault(method, {"status": ERROR, "message": reason,
+                                               "warnings": []})
+            if rec["methods"][method].get("status") is None:
+                rec["methods"][method]["status"] = ERROR
+        rec["error"] = reason
+    rec["wall_time_s"] = time.perf_counter() - t0
+    return rec
+
+
+def error_record(spec: dict, reason: str) -> dict:
+    """The record of a case whose worker failed outside :func:`run_case` (a worker killed,
+    a lost connection)."""
+    return {"index": spec["index"], "digest": spec["digest"], "error": reason,
+            "methods": {m: {"status": ERROR, "message": reason, "warnings": []}
+                        for m in spec["methods"]}, "wall_time_s": None}
+
+
+def case_folder(out: Path, index: int) -> Path:
+    return Path(out) / "cases" / f"{index:04d}"
+
+
+def write_case(out: Path, record: dict, scene_text: str | None = None) -> None:
+    """Write a case's files into its own folder; ``case.json`` last (atomically).
+    ``scene_text``: the case's scene file (``scene.toml``: ``riser-verify compare`` or
+    ``solve`` reruns the case alone)."""
+    folder = case_folder(out, record["index"])
+    folder.mkdir(parents=True, exist_ok=True)
+    if scene_text is not None:
+        (folder / "scene.toml").write_text(scene_text)
+    profiles = {m: d.get("profile") for m, d in record["methods"].items()}
+    meta = {**record, "methods": {m: {k: v for k, v in d.items() if k != "profile"}
+                                  for m, d in record["methods"].items()}}
+    for method, m in meta["methods"].items():
+        sub = folder / method
+        sub.mkdir(exist_ok=True)
+        prof = profiles[method]
+        if prof is not None:
+            profile_of(prof).write_csv(sub / "profile.csv")
+            np.savez(sub / "profile.npz", **{k: np.asarray(v, float) for k, v in prof.items()
+                                             if v is not None})
+        else:
+            for stale in ("profile.csv", "profile.npz"):
+                (sub / stale).unlink(missing_ok=True)
+        write_json({"method": method, **m}, sub / "summary.json")
+    tmp = folder / "case.json.tmp"
+    write_json(meta, tmp)
+    os.replace(tmp, folder / "case.json")
+
+
+def read_case(out: Path, index: int, digest: str) -> dict | None:
+    """The finished record of case ``index`` with these inputs, else None (never run, run
+    with other inputs, or ended in an unexpected error: run it again). Its profiles are
+    read back from ``profile.npz`` (full precision)."""
+    path = case_folder(out, index) / "case.json"
+    try:
+        rec = json.loads(path.read_text())
+    except (OSError, ValueError):
+        return None
+    if rec.get("digest") != digest or "error" in rec:
+        return None
+    for method, m in rec["methods"].items():
+        if m.get("status") == "converged":
+            npz = case_folder(out, index) / method / "profile.npz"
+            try:
+                with np.load(npz) as z:
+                    prof = {k: z[k] for k in z.files}
+            except (OSError, ValueError):
+                return None
+            prof["tdp_s"] = float(prof["tdp_s"]) if "tdp_s" in prof else None
+            m["profile"] = prof
+    return rec
