@@ -104,8 +104,16 @@ def _outer(scene: Scene, line: Line, model: str):
 def solve(scene: Scene) -> SolveResult:
     """Solve the static configuration of ``scene`` in closed form (module docstring).
 
-    Raises :class:`UnsupportedSceneError` before solving for what the method cannot
-    represent; a form without equilibrium ends in ``no_equilibrium``."""
+    What the method cannot represent is ``refused`` before solving (the reason in the
+    message); a form without equilibrium ends in ``no_equilibrium``."""
+    try:
+        return _solve(scene)
+    except UnsupportedSceneError as exc:
+        return SolveResult.refused("analytic", scene, exc)
+
+
+def _solve(scene: Scene) -> SolveResult:
+    """:func:`solve`, raising :class:`UnsupportedSceneError` for what it refuses."""
     t0 = time.perf_counter()
     settings = settings_of(scene)
     line = line_of(scene)

@@ -110,11 +110,14 @@ def solve_modes(scene: Scene, count: int = 10, *, static: SolveResult | None = N
     ``tolerance``: solve_bvp's on the relative collocation residual; ``max_nodes``: its
     node cap per mode (at most 1e7 / states^2: memory); ``grid_intervals``: the
     box-scheme grid of the starting modes. Modes are numbered by refined frequency (by
-    their guesses' order when some failed). Raises :class:`UnsupportedSceneError` for
-    ends that are not fixed, an out-of-plane current (the static state would not be
-    planar) or a rigid seabed (no linear stiffness). Never raises on non-convergence:
-    the status says what failed."""
-    _require_modal(scene)
+    their guesses' order when some failed). Ends that are not fixed, an out-of-plane
+    current (the static state would not be planar), a rigid seabed (no linear stiffness)
+    or flowing contents give a ``refused`` result. Never raises on non-convergence: the
+    status says what failed."""
+    try:
+        _require_modal(scene)
+    except UnsupportedSceneError as exc:
+        return ModalResult("bvp", scene.name, Status.REFUSED, str(exc))
     if count < 1:
         raise ValueError(f"count must be >= 1, got {count}")
     if static is not None and static.method != "bvp":

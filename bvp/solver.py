@@ -39,7 +39,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from riser import validity
-from riser.errors import UnsupportedSceneError
 from riser.internal_flow import wall_tension
 from riser.result import SolveResult, Status
 from riser.scene import Scene
@@ -88,21 +87,20 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
     """Solve the static configuration of ``scene`` (see module docstring for the ends).
 
     Never raises on non-convergence: the result has a :class:`~riser.result.Status` other
-    than converged and a message saying why.
-    Raises :class:`UnsupportedSceneError` for scenes the method cannot represent
-    (out-of-plane current, a slug in the internal flow).
+    than converged and a message saying why; a scene the method cannot represent
+    (out-of-plane current, a slug in the internal flow, a second touchdown) is ``refused``.
     """
     t0 = time.perf_counter()
     settings = scene.bvp.override(tolerance=tolerance, max_nodes=max_nodes,
                                   initial_nodes=initial_nodes)
     if scene.current is not None and not scene.current.is_planar:
-        raise UnsupportedSceneError(
-            f"{scene.source}: environment.current.heading_deg: {scene.current.heading_deg:g} deg "
-            "is out of plane; the bvp method is planar only (use --method vfife)")
+        return SolveResult.refused("bvp", scene, (
+            f"{scene.source}: environment.current.heading_deg: {scene.current.heading_deg:g} "
+            "deg is out of plane; the bvp method is planar only (use --method vfife)"))
     if scene.internal_flow is not None and scene.internal_flow.has_slug:
-        raise UnsupportedSceneError(
+        return SolveResult.refused("bvp", scene, (
             f"{scene.source}: internal_flow.slug: the bvp method models a steady uniform "
-            "flow only (a slug is a travelling load: use --method vfife)")
+            "flow only (a slug is a travelling load: use --method vfife)"))
 
     effects = effects_of(scene)
     info = {"tolerance": settings.tolerance}
@@ -131,7 +129,7 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
                           else Status.NOT_CONVERGED, str(exc))
         early = hopeless_start(scene, prob, tau0)
         if early is not None and early[0] is Status.REFUSED:
-            raise UnsupportedSceneError(f"{scene.source}: bvp refused: {early[1]}")
+            return SolveResult.refused("bvp", scene, f"{scene.source}: bvp refused: {early[1]}")
         if early is not None:
             return result(*early)
         sol, how, failure = solve_with_continuation(prob, tau0, settings, continuation)

@@ -2,21 +2,59 @@
 
 Every run ends in one :class:`Status`. ``converged`` is the only status with a profile;
 every other one carries the reason in ``message``. A scene a method cannot represent is
-refused before solving: the solver raises :class:`~riser.errors.UnsupportedSceneError`
-(a bad scene, :class:`~riser.errors.SceneError`) and a caller that keeps a row for it
-(the stress suite) records :attr:`Status.REFUSED`.
+refused before solving: the solver returns a result of status ``refused`` (one path for
+every method; :meth:`SolveResult.require` raises it as
+:class:`~riser.errors.UnsupportedSceneError` where a caller needs a converged result). A
+bad scene raises :class:`~riser.errors.SceneError` (bad input, before any method runs).
+Results are frozen: a caller that reports one differently (e.g. in another arc length)
+builds a new one with :meth:`SolveResult.replace`.
 """
 
 from __future__ import annotations
 
+import csv
+import dataclasses
 from dataclasses import dataclass, field
 from enum import Enum
 from pathlib import Path
 
+import numpy as np
+
+from .errors import SolveFailed, UnsupportedSceneError
 from .profile import Profile, summarize, write_json
 
-#: the methods that fill this contract (``SolveResult.method``)
-METHODS = ("bvp", "vfife", "analytic")
+
+@dataclass(frozen=True)
+class Method:
+    """A method that fills this contract.
+
+    name : ``SolveResult.method``, ``--method NAME``.
+    package : its package, whose ``solve(scene, **overrides)`` returns a :class:`SolveResult`.
+    overrides : the settings a caller may override per solve (``tolerance``: the BVP's
+        solve_bvp tolerance; ``element_length`` [m]: the VFIFE's).
+    fixed_ends_only : it solves fixed-ends scenes only; a scene in a touchdown form is
+        converted first (``verification.pipeline.vfife_equivalent``).
+    progress : its ``solve`` takes ``progress=`` (riser.callbacks).
+    summary : one line on what it is.
+    """
+
+    name: str
+    package: str
+    overrides: tuple[str, ...] = ()
+    fixed_ends_only: bool = False
+    progress: bool = False
+    summary: str = ""
+
+
+#: the methods that fill this contract, by name (iterating gives the names)
+METHODS = {m.name: m for m in (
+    Method("bvp", "bvp", ("tolerance",),
+           summary="large-deformation beam equations, scipy solve_bvp"),
+    Method("vfife", "vfife", ("element_length",), fixed_ends_only=True, progress=True,
+           summary="vector form intrinsic finite elements, dynamic relaxation and dynamics"),
+    Method("analytic", "analytic",
+           summary="extensible catenary with matched boundary layers, closed form"),
+)}
 
 
 class Status(str, Enum):
@@ -51,27 +89,54 @@ _MEANING = {
 }
 
 
+#: the files of a dynamic run (:meth:`DynamicsResult.write`)
+DYNAMIC_FILES = ("timeseries.csv", "envelope.csv", "states.npz")
+
+
 @dataclass(frozen=True)
 class DynamicsResult:
     """Arrays of a dynamic run (VFIFE), for programmatic use; the files
     ``timeseries.csv``, ``envelope.csv`` and ``states.npz`` hold the same (columns and
-    units: :mod:`vfife.dynamic_outputs` and the README's "Dynamics").
+    units: :mod:`vfife.dynamic_outputs` and docs/results.md).
 
     timeseries : column -> (k,) array, sampled every output interval from t = 0.
     envelope : column -> (n,) array along the line (``s`` [m]; extremes over the
         statistics window).
-    states : ``t`` (k,), ``s`` (n,), ``x`` (k, n, 3) [m], ``v`` (k, n, 3) [m/s]; None
-        unless ``[dynamics] save_states``.
+    states : ``t`` (k,), ``s`` (n,), ``x`` (k, n, 3) [m], ``v`` (k, n, 3) [m/s],
+        ``tension`` (k, n) [N], ``moment`` (k, n) [N m]; None unless
+        ``[dynamics] save_states``.
     """
 
     timeseries: dict
     envelope: dict
     states: dict | None
 
+    def write(self, out_dir: str | Path) -> list[str]:
+        """timeseries.csv and envelope.csv (10 significant digits, empty for NaN), and
+        states.npz with the states; returns the names written."""
+        out = Path(out_dir)
+        _write_columns(self.timeseries, out / "timeseries.csv")
+        _write_columns(self.envelope, out / "envelope.csv")
+        names = ["timeseries.csv", "envelope.csv"]
+        if self.states is not None:
+            np.savez_compressed(out / "states.npz", **self.states)
+            names.append("states.npz")
+        return names
 
-@dataclass
+
+def _write_columns(columns: dict, path: Path) -> None:
+    """A CSV of equal-length columns (name -> array), values with 10 significant digits."""
+    names = list(columns)
+    with open(path, "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(names)
+        for row in zip(*(columns[k] for k in names)):
+            w.writerow([f"{v:.10g}" if np.isfinite(v) else "" for v in row])
+
+
+@dataclass(frozen=True)
 class SolveResult:
-    """Outcome of one solve.
+    """Outcome of one solve (frozen: built once by the method; see :meth:`replace`).
 
     Attributes
     ----------
@@ -91,7 +156,6 @@ class SolveResult:
     dynamics : the arrays of a dynamic run, else None.
     solver_state : the method's final static state for programmatic use (VFIFE: the
         :class:`vfife.model.Model` at equilibrium), else None; not written.
-    extra_files : name -> callable(path) writing additional outputs (e.g. timeseries.csv).
     """
 
     method: str
@@ -106,16 +170,36 @@ class SolveResult:
     info: dict = field(default_factory=dict)
     dynamics: DynamicsResult | None = None
     solver_state: object = None
-    extra_files: dict = field(default_factory=dict)
 
     def __post_init__(self) -> None:
-        self.status = Status(self.status)
+        object.__setattr__(self, "status", Status(self.status))
         if self.status is not Status.CONVERGED:
-            self.profile = None
+            object.__setattr__(self, "profile", None)
+
+    @classmethod
+    def refused(cls, method: str, scene, reason: UnsupportedSceneError | str) -> "SolveResult":
+        """The result of a method that refuses ``scene`` before solving, with the reason
+        (an :class:`UnsupportedSceneError` a check raised, or its text)."""
+        return cls(method, scene.name, Status.REFUSED, str(reason),
+                   model=scene.continuum_model())
 
     @property
     def converged(self) -> bool:
         return self.status is Status.CONVERGED
+
+    def require(self) -> "SolveResult":
+        """This result when it converged; else raise :class:`UnsupportedSceneError` (refused:
+        bad input for this method, exit 2) or :class:`SolveFailed` carrying the status."""
+        if self.converged:
+            return self
+        if self.status is Status.REFUSED:
+            raise UnsupportedSceneError(self.message)
+        raise SolveFailed(self.method, self.status, f"{self.method} on {self.scene}: "
+                          f"{self.status.value}: {self.message}")
+
+    def replace(self, **changes) -> "SolveResult":
+        """A copy with some fields changed (the result itself is frozen)."""
+        return dataclasses.replace(self, **changes)
 
     def summary(self) -> dict:
         """summary.json content: run facts, the profile's features, then solver info."""
@@ -129,14 +213,15 @@ class SolveResult:
         return out
 
     def write(self, out_dir: str | Path) -> None:
-        """Write summary.json always; profile.csv (and extra files) only when converged."""
+        """Write summary.json always; profile.csv (and a dynamic run's files) only when
+        converged (a failed run removes them, so none of an earlier run is left)."""
         out = Path(out_dir)
         out.mkdir(parents=True, exist_ok=True)
         if self.converged and self.profile is not None:
             self.profile.write_csv(out / "profile.csv")
-            for name, writer in self.extra_files.items():
-                writer(out / name)
+            if self.dynamics is not None:
+                self.dynamics.write(out)
         else:
-            for stale in ["profile.csv", *self.extra_files]:
+            for stale in ("profile.csv", *DYNAMIC_FILES):
                 (out / stale).unlink(missing_ok=True)
         write_json(self.summary(), out / "summary.json")

@@ -12,6 +12,7 @@ from scipy.special import ellipe, ellipk
 
 import bvp
 from riser.errors import UnsupportedSceneError
+from riser.result import Status
 from riser.io.scene_file import parse_scene
 from riser.scene import Current, Ends, Seabed
 from verification.catalog import resolve
@@ -209,8 +210,12 @@ def test_current_reverses_sign_symmetry():
 def test_out_of_plane_current_is_refused():
     sc = resolve("wang2014-baseline").replace(current=Current(heights=(0.0,), speeds=(1.0,),
                                                               heading_deg=90.0))
+    # one refusal path: a refused result before solving, with the reason; require() raises it
+    res = bvp.solve(sc)
+    assert res.status is Status.REFUSED and res.profile is None and "planar only" in res.message
+    assert res.status.exit_code == 2
     with pytest.raises(UnsupportedSceneError, match="planar only"):
-        bvp.solve(sc)
+        res.require()
 
 
 def test_failure_is_reported_not_returned():

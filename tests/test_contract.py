@@ -95,7 +95,8 @@ def test_stress_reads_the_status_not_the_message(monkeypatch):
     monkeypatch.setattr(stress, "solve_scene", lambda scene, method, **kw: fake)
     row, _ = stress.run_one("hard-deep-scr", "bvp")
     assert row["outcome"] == "failed"
-    fake.status = Status.NO_EQUILIBRIUM
+    fake = fake.replace(status=Status.NO_EQUILIBRIUM)      # results are frozen
+    monkeypatch.setattr(stress, "solve_scene", lambda scene, method, **kw: fake)
     row, _ = stress.run_one("hard-deep-scr", "bvp")
     assert row["outcome"] == "no equilibrium"
 

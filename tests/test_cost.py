@@ -24,7 +24,6 @@ Two small scenes keep the default run short (~10 s for this file):
 
 from __future__ import annotations
 
-import io
 import math
 
 import pytest
@@ -34,7 +33,7 @@ import vfife
 from riser.io.scene_file import scene_from_dict
 from verification.quantities import raw_values
 from verification.studies import cost
-from verification.studies.cost import assessment, fits, records, runner, settings
+from verification.studies.cost import assessment, fits, records, settings
 from verification.studies.cost.errors import rel_errors
 from verification.studies.cost.touchdown import (
     asymptotic_length,
@@ -234,16 +233,19 @@ def test_pareto_front():
     assert fits.pareto(pts) == [(0.5, 1e-1), (1.0, 1e-2), (2.0, 1e-3), (4.0, 1e-4)]
 
 
-def test_progress_reports_done_total_elapsed_remaining():
-    buf = io.StringIO()
-    p = runner.Progress(4, "x", stream=buf)
+def test_progress_reports_runs_done_and_the_share_of_the_predicted_cost():
+    # the study tells k/N runs and the fraction of the predicted cost done; the terminal
+    # display (verification.runtime.progress.Progress) draws the bar and the ETA from it
+    from verification.runtime.progress import RunCounter
+    calls = []
+    p = RunCounter([1.0, 3.0, 2.0, 2.0], lambda m, fraction=None: calls.append((m, fraction)))
     p.step("a")
     p.step("b")
-    line = buf.getvalue().splitlines()[-1]
-    assert "2/4 runs" in line and "elapsed" in line and "remaining" in line
-    p.plan([1.0])                   # the rest re-planned: one run to come
+    assert calls[-1] == ("2/4 runs (b)", pytest.approx(4.0 / 8.0))   # (1 + 3) of 8
+    p.plan([4.0])                   # the rest re-planned: one run to come
     p.step("c")
-    assert "3/3 runs" in buf.getvalue().splitlines()[-1]
+    assert calls[-1] == ("3/3 runs (c)", pytest.approx(1.0))
+    RunCounter([1.0], None).step("quiet")        # no callback: nothing to tell, no error
 
 
 def test_cli_has_cost_command():

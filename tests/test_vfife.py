@@ -14,6 +14,7 @@ from scipy.optimize import fsolve
 
 import vfife
 from riser.errors import UnsupportedSceneError
+from riser.result import Status
 from riser.io.scene_file import load_scene, scene_from_dict
 from riser.profile import summarize
 from riser.transform import DEFAULT_SEABED_STIFFNESS, fixed_ends_scene
@@ -56,8 +57,10 @@ def wang_fixed():
 
 # ------------------------------------------------------------------ ends
 def test_unsupported_ends_raise_clear_error():
+    res = vfife.solve(load_scene(WANG["path"]))
+    assert res.status is Status.REFUSED and "vfife needs fixed ends" in res.message
     with pytest.raises(UnsupportedSceneError, match="vfife needs fixed ends"):
-        vfife.solve(load_scene(WANG["path"]))
+        res.require()
 
 
 def test_fixed_ends_scene_conversion():
@@ -576,5 +579,7 @@ def test_clamped_end_in_3d_is_refused():
     from verification.catalog import resolve
     sc = resolve("hard-out-of-plane-current")
     sc = sc.replace(vfife=sc.vfife.replace(clamped_ends=("bottom",)))
+    res = vfife.solve(sc)
+    assert res.status.value == "refused" and "vfife.clamped_ends" in res.message
     with pytest.raises(UnsupportedSceneError, match="vfife.clamped_ends"):
-        vfife.solve(sc)
+        res.require()

@@ -15,16 +15,15 @@ scene's s minus the added length (negative s lies on the added line).
 from __future__ import annotations
 
 import dataclasses
+import importlib
 import time
 from dataclasses import dataclass
 
-import analytic
 import bvp
-import vfife
 from riser import validity
-from riser.errors import SolveFailed
+from riser.errors import SolveFailed, UnsupportedSceneError
 from riser.profile import Profile
-from riser.result import METHODS, SolveResult
+from riser.result import METHODS, DynamicsResult, SolveResult, Status
 from riser.scene import Scene
 from riser.transform import fixed_ends_scene
 from vfife.dynamic_outputs import ARC_LENGTH_COLUMNS, ARC_LENGTH_KEYS
@@ -54,12 +53,15 @@ class VfifeEquivalent:
 def vfife_equivalent(scene: Scene, paper: SolveResult | None = None) -> VfifeEquivalent:
     """The fixed-ends equivalent of ``scene`` (see the module docstring). ``paper``: a
     converged BVP result of ``scene`` to start from (solved here when None). Raises
-    :class:`SolveFailed` when that BVP does not converge."""
+    :class:`UnsupportedSceneError` when the BVP refuses the scene (the VFIFE's conversion
+    needs it) and :class:`SolveFailed` when it does not converge."""
     if scene.ends.kind == "fixed":
         return VfifeEquivalent(scene)
     t0 = time.perf_counter()
     if paper is None:
         paper = bvp.solve(scene)
+    if paper.status is Status.REFUSED:        # the VFIFE refuses what the BVP refuses
+        raise UnsupportedSceneError(paper.message)
     if not paper.converged:
         raise SolveFailed("bvp", paper.status, f"cannot convert {scene.name} to fixed ends: "
                           f"the BVP of its own model did not converge ({paper.message})")
@@ -85,56 +87,64 @@ def shifted(profile: Profile | None, s_shift: float) -> Profile | None:
                                tdp_s=None if profile.tdp_s is None else profile.tdp_s - s_shift)
 
 
-def shifted_dynamics(dyn, s_shift: float):
-    """``dyn`` (a :class:`~riser.result.DynamicsResult`) with ``s_shift`` [m] subtracted
-    from its arc lengths (envelope and states ``s``, the time series' ``touchdown_s``,
-    ``min_tension_s`` and ``max_moment_s``). The dictionaries are updated in place: the
-    result's file writers hold the same ones."""
-    if dyn is not None and s_shift:
-        for key in ARC_LENGTH_COLUMNS:
-            dyn.timeseries[key] = dyn.timeseries[key] - s_shift
-        dyn.envelope["s"] = dyn.envelope["s"] - s_shift
-        if dyn.states is not None:
-            dyn.states["s"] = dyn.states["s"] - s_shift
-    return dyn
+def shifted_dynamics(dyn: DynamicsResult | None, s_shift: float) -> DynamicsResult | None:
+    """``dyn`` with ``s_shift`` [m] subtracted from its arc lengths (envelope and states
+    ``s``, the time series' ``touchdown_s``, ``min_tension_s`` and ``max_moment_s``)."""
+    if dyn is None or not s_shift:
+        return dyn
+    ts = {k: v - s_shift if k in ARC_LENGTH_COLUMNS else v for k, v in dyn.timeseries.items()}
+    env = {**dyn.envelope, "s": dyn.envelope["s"] - s_shift}
+    states = None if dyn.states is None else {**dyn.states, "s": dyn.states["s"] - s_shift}
+    return DynamicsResult(ts, env, states)
 
 
 def solve_scene(scene: Scene, method: str, *, tolerance: float | None = None,
                 element_length: float | None = None, progress=None) -> SolveResult:
-    """Solve ``scene`` with ``method`` ('bvp', 'vfife' or 'analytic', the closed form of a
-    single-section line without current, which takes no setting here). ``tolerance`` applies to the
-    BVP (solve_bvp tolerance), ``element_length`` [m] to the VFIFE; each overrides the
-    scene's setting and is validated like it. A VFIFE run of a Wang-form scene solves its
-    :func:`vfife_equivalent`, says so in ``info['ends_conversion']`` and reports arc
-    lengths in the scene's own coordinate.
+    """Solve ``scene`` with ``method`` (a name of :data:`riser.result.METHODS`: 'bvp',
+    'vfife' or 'analytic', the closed form of a single-section line without current).
+    ``tolerance`` applies to the BVP (solve_bvp tolerance), ``element_length`` [m] to the
+    VFIFE; each overrides the scene's setting and is validated like it. A VFIFE run of a
+    Wang-form scene solves its :func:`vfife_equivalent`, says so in
+    ``info['ends_conversion']`` and reports arc lengths in the scene's own coordinate.
 
-    Raises SceneError (bad input), UnsupportedSceneError (refused before solving) and
-    SolveFailed (the BVP a conversion needs did not converge); every other outcome is in
-    the result's status. ``progress``: optional callable, ``progress(message)`` or
-    ``progress(message, fraction=None)`` (see :mod:`verification.runtime.progress`); the BVP
-    says only when it starts (``solve_bvp`` has no callback)."""
-    say = progress or (lambda message: None)
-    if method == "bvp":
-        say("bvp: solving")
-        return bvp.solve(scene, tolerance=tolerance)
-    if method == "analytic":
-        return analytic.solve(scene)
-    if method != "vfife":
-        raise ValueError(f"method must be one of {METHODS}, got {method!r}")
-    if scene.ends.kind != "fixed":
+    A scene the method cannot represent gives a ``refused`` result; raises SceneError (bad
+    input) and SolveFailed (the BVP a conversion needs did not converge); every other
+    outcome is in the result's status. ``progress``: optional callable,
+    ``progress(message)`` or ``progress(message, fraction=None)`` (see
+    :mod:`verification.runtime.progress`); a method without a callback (the BVP's
+    ``solve_bvp``) is said only when it starts."""
+    m = METHODS.get(method)
+    if m is None:
+        raise ValueError(f"method must be one of {tuple(METHODS)}, got {method!r}")
+    given = {"tolerance": tolerance, "element_length": element_length}
+    kwargs = {k: given[k] for k in m.overrides}
+    if m.progress:
+        kwargs["progress"] = progress
+    elif progress is not None:
+        progress(f"{method}: solving")
+    solve = importlib.import_module(m.package).solve
+    if not m.fixed_ends_only or scene.ends.kind == "fixed":
+        return solve(scene, **kwargs)
+    return _solve_converted(scene, solve, kwargs, progress)
+
+
+def _solve_converted(scene: Scene, solve, kwargs: dict, progress) -> SolveResult:
+    """The VFIFE (the fixed-ends-only method) on a touchdown-form ``scene``: refused before
+    the conversion's BVP solve where it would be refused after, then solved on
+    :func:`vfife_equivalent` and reported in the scene's own arc length."""
+    validity.check_resolution(scene, scene.vfife.override(
+        element_length=kwargs.get("element_length")).element_length)
+    try:
         require_vfife_model(scene)
-        # refuse what the VFIFE would refuse before the conversion's BVP solve
-        validity.check_resolution(scene, scene.vfife.override(
-            element_length=element_length).element_length)
-        say("bvp: solving the scene's own model for the conversion to fixed ends")
-    eq = vfife_equivalent(scene)
-    res = vfife.solve(eq.scene, element_length=element_length, progress=progress)
-    if eq.note:
-        res.info["ends_conversion"] = eq.note
-        res.scene = scene.name
-        res.profile = shifted(res.profile, eq.s_shift)
-        res.dynamics = shifted_dynamics(res.dynamics, eq.s_shift)
-        for key in ARC_LENGTH_KEYS:
-            if res.info.get(key) is not None:
-                res.info[key] -= eq.s_shift
-    return res
+        if progress is not None:
+            progress("bvp: solving the scene's own model for the conversion to fixed ends")
+        eq = vfife_equivalent(scene)
+    except UnsupportedSceneError as exc:
+        return SolveResult.refused("vfife", scene, exc)
+    res = solve(eq.scene, **kwargs)
+    info = {**res.info, "ends_conversion": eq.note}
+    for key in ARC_LENGTH_KEYS:
+        if info.get(key) is not None:
+            info[key] -= eq.s_shift
+    return res.replace(scene=scene.name, profile=shifted(res.profile, eq.s_shift),
+                       dynamics=shifted_dynamics(res.dynamics, eq.s_shift), info=info)

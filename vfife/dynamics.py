@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import math
 import time
+from enum import StrEnum
 
 import numpy as np
 
@@ -42,6 +43,15 @@ from .timestep import choose_step, critical_steps
 
 #: the dynamics reports its progress this many times over the run (and at its end)
 PROGRESS_REPORTS = 100
+
+
+class DynamicsOutcome(StrEnum):
+    """How a dynamic run ended."""
+
+    #: the whole duration integrated
+    OK = "ok"
+    #: NaN/inf, a runaway speed or an energy growth the motion cannot explain
+    BLOW_UP = "blow-up"
 
 
 def top_displacement(scene, t: np.ndarray) -> np.ndarray:
@@ -95,7 +105,8 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
     Returns (model at the end, info) where info holds 'timeseries' (dict of arrays),
     'envelope' (dict of arrays along s), 'states' (dict for npz, None unless
     ``save_states``), 'statistics' (the window's extremes, see
-    :meth:`Recorder.statistics`), 'time_step', 'steps', 'status' ('ok' | 'blow-up'),
+    :meth:`Recorder.statistics`), 'time_step', 'steps', 'status' (a
+    :class:`DynamicsOutcome`),
     'message', 'wall_s', 'effects'. ``progress``: optional callable, called
     ``PROGRESS_REPORTS`` times over the run as ``progress(message, fraction=t /
     duration)`` (the last with 1.0), or ``progress(message)`` if it takes one argument.
@@ -146,7 +157,7 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
 
     t0 = time.perf_counter()
     rec.sample(0.0, model, 0.0, True)
-    status, message = "ok", "dynamics completed"
+    status, message = DynamicsOutcome.OK, "dynamics completed"
     e0 = None
     for j in range(n_env):
         tj = np.linspace(j * env_dt, (j + 1) * env_dt, nsub + 1)
@@ -155,7 +166,7 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
                                          top0=top0)
         t = (j + 1) * env_dt
         if st == 2 or not np.all(np.isfinite(model.X)):
-            status = "blow-up"
+            status = DynamicsOutcome.BLOW_UP
             message = (f"dynamics diverged (blow-up) at t = {t:.4g} s (NaN/inf or speed > "
                        "1000 m/s); likely cause: " + blow_up_cause(cause))
             break
@@ -163,7 +174,7 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
         if e0 is None:
             e0 = max(ke, 1.0)
         elif ke > 1e6 * e0 and ke > 1e3 * float(np.sum(model.mass)):
-            status = "blow-up"
+            status = DynamicsOutcome.BLOW_UP
             message = (f"dynamics diverged (blow-up, energy growth) at t = {t:.4g} s (kinetic "
                        f"energy {ke:.3g} J); likely cause: " + blow_up_cause(cause))
             break

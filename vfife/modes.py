@@ -101,12 +101,21 @@ def solve_modes(scene, count: int = 10, *, static=None, progress=None,
     static : a converged :func:`vfife.solve` result of ``scene`` (solved here when None;
         its ``solver_state`` is the static Model). rot_scale : factor on the physical
         rotational inertia (1; the dynamics use ``[vfife] rotational_inertia_scale_dynamics``).
-    Raises UnsupportedSceneError for a scene without fixed ends, with flowing contents
-    or a non-planar static state. A static solve that fails gives a result with its status and no modes.
-    Shapes: the nodal translations (n, 3), ``s`` the mesh's unstretched arc length.
+    A scene without fixed ends, with flowing contents or with a non-planar static state
+    gives a ``refused`` result; a static solve that fails gives a result with its status
+    and no modes. Shapes: the nodal translations (n, 3), ``s`` the mesh's unstretched arc
+    length.
     """
     if count < 1:
         raise ValueError(f"count must be >= 1, got {count}")
+    try:
+        return _solve_modes(scene, count, static, progress, rot_scale)
+    except UnsupportedSceneError as exc:
+        return ModalResult("vfife", scene.name, Status.REFUSED, str(exc))
+
+
+def _solve_modes(scene, count: int, static, progress, rot_scale: float) -> ModalResult:
+    """:func:`solve_modes`, raising UnsupportedSceneError for what it refuses."""
     if scene.internal_flow is not None and scene.internal_flow.speed != 0.0:
         raise UnsupportedSceneError(
             f"{scene.source}: internal_flow.speed: modes do not model flowing contents (the "

@@ -12,12 +12,26 @@ from __future__ import annotations
 
 import math
 import time
+from enum import StrEnum
 
 import numpy as np
 
 from .mesh import Mesh
 from .model import Model
 from .timestep import critical_steps, damped_factor, nodal_stiffness
+
+
+class RelaxOutcome(StrEnum):
+    """How a relaxation ended (its value is written in summary.json's stages)."""
+
+    #: force (and moment) residual below the tolerance, and the creep test met
+    CONVERGED = "converged"
+    #: the step budget ran out before the residual met the tolerance
+    MAX_STEPS = "max_steps"
+    #: the residual is met but the displacement still to come is not (creep test)
+    CREEPING = "creeping"
+    #: NaN/inf in the state or a runaway speed
+    BLOW_UP = "blow-up"
 
 
 def static_inertia(mesh: Mesh, *, rot_scale: float, tension, safety: float,
@@ -75,7 +89,7 @@ def relax(model: Model, dt: float, c: float, tol: float, max_steps: int,
           creep_tol: float | None = None, creep_windows: int | None = None) -> dict:
     """Relax ``model`` to equilibrium; returns a dict (steps, residual (relative),
     moment_residual (relative), creep_m (estimated remaining displacement [m], NaN when not
-    checked), status 'converged' | 'max_steps' | 'creeping' | 'blow-up', wall_s).
+    checked), status (a :class:`RelaxOutcome`), wall_s).
 
     Converged when the largest nodal out-of-balance force is below ``tol`` x one element's
     weight (moments: x the element length) and, with ``creep_tol`` [m], when the
@@ -88,7 +102,7 @@ def relax(model: Model, dt: float, c: float, tol: float, max_steps: int,
     d_k -> remaining = d_k q / (1 - q), q = d_k / d_(k-1) (exact for one decaying mode),
     accepted only once q is steady (changes by <= 0.05 between windows), i.e. the slowest
     mode dominates the motion. ``creep_windows``: give up after that many windows with
-    status 'creeping' (the caller then changes the damping), None: until ``max_steps``.
+    status ``CREEPING`` (the caller then changes the damping), None: until ``max_steps``.
     ``progress``: optional callable(message), told after every ``chunk`` of steps and
     every creep window (no fraction: when the relaxation converges is not known).
     """
@@ -98,7 +112,7 @@ def relax(model: Model, dt: float, c: float, tol: float, max_steps: int,
     tol_m = tol * wl * h
     t0 = time.perf_counter()
     done = 0
-    status = "max_steps"
+    status = RelaxOutcome.MAX_STEPS
     res = mres = float("nan")
     creep = float("nan")
     while done < max_steps:
@@ -109,16 +123,16 @@ def relax(model: Model, dt: float, c: float, tol: float, max_steps: int,
             progress(f"statics {label}: {done} steps, residual {res / wl:.3g} x element "
                      f"weight")
         if st == 2 or not (np.all(np.isfinite(model.X)) and np.all(np.isfinite(model.D))):
-            status = "blow-up"
+            status = RelaxOutcome.BLOW_UP
             break
         if st == 1:
             if creep_tol is None:
-                status = "converged"
+                status = RelaxOutcome.CONVERGED
                 break
             window = int(min(max(done // 4, 1000), 50000))
             d_prev = math.inf
             q_prev = math.nan
-            status = "creeping"
+            status = RelaxOutcome.CREEPING
             nwin = 0
             while done < max_steps and (creep_windows is None or nwin < creep_windows):
                 nwin += 1
@@ -126,7 +140,7 @@ def relax(model: Model, dt: float, c: float, tol: float, max_steps: int,
                 k, res, mres, ke, st = model.run(min(window, max_steps - done), dt, c)
                 done += k
                 if st == 2 or not np.all(np.isfinite(model.X)):
-                    status = "blow-up"
+                    status = RelaxOutcome.BLOW_UP
                     break
                 d = float(np.max(np.sqrt(np.sum((model.X - X0) ** 2, axis=0))))
                 q = d / d_prev if d_prev > 0.0 else 0.0
@@ -145,7 +159,7 @@ def relax(model: Model, dt: float, c: float, tol: float, max_steps: int,
                     creep = d
                 if (creep < creep_tol and d < creep_tol and res <= tol_f
                         and (mres <= tol_m or tol_m <= 0.0)):
-                    status = "converged"
+                    status = RelaxOutcome.CONVERGED
                     break
             break
     return {"steps": done, "residual": res / wl, "moment_residual": mres / (wl * h),

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import csv
 import time
 
 import numpy as np
@@ -16,10 +15,11 @@ from riser.result import DynamicsResult, SolveResult, Status
 from riser.scene import Scene
 
 from .dynamic_outputs import touchdown_s
-from .dynamics import run_dynamics
+from .dynamics import DynamicsOutcome, run_dynamics
 from .ends import require_fixed_ends
 from .mesh import build_mesh
 from .model import Model
+from .relaxation import RelaxOutcome
 from .statics import solve_static
 
 _COMPILED = {"done": False, "compile_s": 0.0}
@@ -106,24 +106,6 @@ def make_profile(model: Model, scene: Scene) -> Profile:
                    wall_tension=wall)
 
 
-def _csv_writer(columns: dict):
-    names = list(columns)
-
-    def write(path):
-        with open(path, "w", newline="") as fh:
-            w = csv.writer(fh)
-            w.writerow(names)
-            for row in zip(*(columns[k] for k in names)):
-                w.writerow([f"{v:.10g}" if np.isfinite(v) else "" for v in row])
-    return write
-
-
-def _npz_writer(arrays: dict):
-    def write(path):
-        np.savez_compressed(path, **arrays)
-    return write
-
-
 def solve(scene: Scene, *, element_length: float | None = None, tolerance: float | None = None,
           progress=None) -> SolveResult:
     """Solve a fixed-ends scene (statics, then dynamics if the scene has [dynamics]).
@@ -133,25 +115,29 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
     1e-3); progress: optional callable, ``progress(message)`` or ``progress(message,
     fraction=None)`` (told of the statics' relaxation, and of the dynamics with the
     fraction of the run done; see :func:`riser.callbacks.with_fraction`).
-    Raises UnsupportedSceneError for scenes without fixed ends, SceneError for an override
-    outside the range of its scene key. Never returns NaN results: a failed run has a
-    status other than converged (diverged, not_converged) and profile None, with the reason
-    in ``message``.
+    A scene the method cannot represent (ends not fixed, a BVP-only limit in [model], a
+    clamped end out of plane) gives a ``refused`` result before solving; an override
+    outside the range of its scene key raises SceneError. Never returns NaN results: a
+    failed run has a status other than converged (diverged, not_converged) and profile
+    None, with the reason in ``message``.
     ``wall_time_s`` excludes Numba compilation (reported as info['compile_s']).
     """
-    require_fixed_ends(scene)
     vf = scene.vfife.override(element_length=element_length, static_tolerance=tolerance)
     h, tol = vf.element_length, vf.static_tolerance
-    validity.check_resolution(scene, h)
     planar = bool(scene.is_planar)
-    if vf.clamped_ends and not planar:
-        # the elements carry no twist (no GJ): with moment-free ends and no distributed
-        # torque a round pipe is torsion-free, but a clamped end of a line loaded out of
-        # its plane would need the torsional stiffness
-        raise UnsupportedSceneError(
-            f"{scene.name}: vfife.clamped_ends: clamped ends are supported for planar "
-            "scenes only (the VFIFE elements carry no twist); remove the out-of-plane "
-            "current/motion or the clamp")
+    try:
+        require_fixed_ends(scene)
+        if vf.clamped_ends and not planar:
+            # the elements carry no twist (no GJ): with moment-free ends and no distributed
+            # torque a round pipe is torsion-free, but a clamped end of a line loaded out of
+            # its plane would need the torsional stiffness
+            raise UnsupportedSceneError(
+                f"{scene.name}: vfife.clamped_ends: clamped ends are supported for planar "
+                "scenes only (the VFIFE elements carry no twist); remove the out-of-plane "
+                "current/motion or the clamp")
+    except UnsupportedSceneError as exc:
+        return SolveResult.refused("vfife", scene, exc)
+    validity.check_resolution(scene, h)
     if progress is not None:
         progress("vfife: loading the kernels (compiled on the first run)")
     compile_s = warm_up()
@@ -179,20 +165,20 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
                            time.perf_counter() - t0, effects, model=scene.continuum_model(),
                            warnings=warnings, info=info, **fields)
 
-    if sinfo["status"] != "converged" or not finite:
+    if sinfo["status"] is not RelaxOutcome.CONVERGED or not finite:
+        blew_up = sinfo["status"] is RelaxOutcome.BLOW_UP or not finite
         why = (sinfo.get("diverged") or "static relaxation diverged (NaN/inf in the state); "
                "likely cause: time step above the critical step or an impossible geometry"
-               if sinfo["status"] == "blow-up" or not finite else
+               if blew_up else
                f"static relaxation still creeping after {sinfo['steps']} steps: residual "
                f"{sinfo['residual']:.3g} x element weight (tolerance {tol:g}) but an "
                f"estimated {sinfo['creep_m']:.3g} m of displacement still to come (creep "
                f"tolerance {sinfo['creep_tolerance_m']:.3g} m); raise [vfife] max_steps"
-               if sinfo["status"] == "creeping" else
+               if sinfo["status"] is RelaxOutcome.CREEPING else
                f"static relaxation did not reach the tolerance {tol:g} in {sinfo['steps']} "
                f"steps (residual {sinfo['residual']:.3g} x element weight); raise [vfife] "
                "max_steps or check the geometry")
-        diverged = sinfo["status"] == "blow-up" or not finite
-        return result(Status.DIVERGED if diverged else Status.NOT_CONVERGED, why)
+        return result(Status.DIVERGED if blew_up else Status.NOT_CONVERGED, why)
     profile = make_profile(model, scene)
     bad = validity.nonfinite(profile)
     if bad:
@@ -208,7 +194,7 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
                  "dynamic_step_limit": dinfo["step_limit"], "dynamic_wall_s": dinfo["wall_s"],
                  "realtime_factor": dinfo["realtime_factor"],
                  "ramp_time": dinfo["ramp_time"]})
-    if dinfo["status"] != "ok":
+    if dinfo["status"] is not DynamicsOutcome.OK:
         return result(Status.DIVERGED, dinfo["message"], solver_state=model)
     message += f"; {dinfo['message']} ({dinfo['steps']} steps of {dinfo['time_step']:.3g} s)"
     ts, env, states = dinfo["timeseries"], dinfo["envelope"], dinfo["states"]
@@ -216,10 +202,8 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
                                            env["tension_min"], env["tension_max"],
                                            when=" during the dynamics", surface=True))
     info.update(dinfo["statistics"])
-    files = {"timeseries.csv": _csv_writer(ts), "envelope.csv": _csv_writer(env)}
     if states is not None:
-        files["states.npz"] = _npz_writer(states)
         info["states_file"] = ("states.npz (t (k,), s (n,), x (k, n, 3), v (k, n, 3), "
                                "tension (k, n), moment (k, n))")
     return result(Status.CONVERGED, message, profile, solver_state=model,
-                  dynamics=DynamicsResult(ts, env, states), extra_files=files)
+                  dynamics=DynamicsResult(ts, env, states))

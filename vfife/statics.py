@@ -78,14 +78,14 @@ fraction of that weight x the element length.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
 from .mesh import Mesh, build_mesh, catenary_shape, interpolate_state, length_consistent
 from .model import Model
-from .relaxation import relax, static_inertia
+from .relaxation import RelaxOutcome, relax, static_inertia
 from .timestep import choose_step, critical_steps, node_sum
-
 
 
 def axial_dashpot(mesh: Mesh, zeta: float) -> np.ndarray:
@@ -164,184 +164,248 @@ def mesh_sequence(h_coarse: float, h: float, ratio: float = 4.0) -> list[float]:
     return [h_coarse] + out[:0:-1] + [h]
 
 
+@dataclass(frozen=True)
+class RelaxationKnobs:
+    """The ``[vfife]`` and ``[vfife.expert]`` settings the relaxation reads, with the
+    scene's seabed stiffness and the creep tolerance in metres (their defaults and ranges:
+    :class:`riser.settings.VFIFESettings`)."""
+
+    safety: float                 # time step / critical step
+    rot_scale: float              # factor on the rotational inertia
+    max_steps: int                # step budget of the whole relaxation
+    coarse_element_length: float  # [m], first mesh of the sequence
+    axial_damping: float          # axial dashpot, fraction of critical (0: off)
+    damping: float                # x critical of mode 1: coarse mesh and long-mode creep
+    damping_fine: float           # ... on the finer meshes
+    damping_current: float        # ... on the finer meshes with a current
+    creep_tol_m: float            # [m] displacement still to come (0: test off)
+    fictitious: bool              # fictitious masses where bending/rotation/seabed limit
+    contact_damping: float        # seabed contact damping, fraction of critical (at least)
+    continuation_steps: int       # weight ramp steps for an unusable catenary start
+    fixed_time_step: float | None  # [s] expert: fixed relaxation step
+    seabed_stiffness: float       # [N/m2], 0 without a seabed
+
+    @classmethod
+    def of(cls, scene) -> "RelaxationKnobs":
+        vf = scene.vfife
+        return cls(vf.time_step_safety, vf.rotational_inertia_scale, vf.max_steps,
+                   vf.coarse_element_length, vf.static_axial_damping, vf.static_damping,
+                   vf.static_damping_fine, vf.static_damping_current,
+                   vf.creep_tolerance * float(sum(sg.length for sg in scene.segments)),
+                   vf.static_fictitious_inertia, vf.static_contact_damping,
+                   vf.static_weight_continuation_steps, vf.static_time_step,
+                   scene.seabed.stiffness if scene.seabed is not None else 0.0)
+
+
+def scheme_text(knobs: RelaxationKnobs, stages: list[float], next_damping: float) -> str:
+    """The ``static_scheme`` sentence of summary.json."""
+    damp = (f"{knobs.damping:g} x on the first mesh, {next_damping:g} x on the next ones "
+            f"(then {knobs.damping:g} x while long modes creep)" if len(stages) > 1
+            else f"{knobs.damping:g} x")
+    damp += " critical of mode 1"
+    return ("catenary start, dynamic relaxation, mesh sequencing "
+            f"{' -> '.join(f'{s:g}' for s in stages)} m, viscous mass-proportional damping "
+            f"{damp}, axial dashpot {knobs.axial_damping:g} x critical at the "
+            f"highest axial frequency (stiffness-proportional), rotational inertia "
+            f"x{knobs.rot_scale:g}"
+            + (", fictitious nodal masses and rotational inertias where the bending, "
+               "rotation or seabed spring would limit the step below the axial one "
+               "(contact damping 1 x critical)" if knobs.fictitious else "")
+            + ", length-consistent starting shapes; fictitious inertia "
+            "and damping only, the equilibrium and the out-of-balance force "
+            "(fictitious damping not counted) are unchanged")
+
+
+def catenary_start(scene, mesh: Mesh, h: float, knobs: RelaxationKnobs, info: dict):
+    """The first mesh's start: the extensible catenary through the fixed ends, or, when it
+    is unusable (it misses the hang-off, or its buoyant part dips more than 1 % of the
+    hang-off height below the seabed), the catenary of a uniform line of the mean |w|,
+    whose weight is then ramped to the scene's (continuation in buoyancy; the start only,
+    not the equilibrium). ``h`` [m]: the mesh's element length. Returns (X, D, element
+    tensions [N], the catenary's H [N], the ramp (uniform weight [N/m], steps) or ()); the
+    catenary's figures go into ``info``."""
+    X, D, cinfo = catenary_shape(scene, mesh.s)
+    span = float(np.hypot(*(np.asarray(scene.ends.hang_off, float)
+                            - np.asarray(scene.ends.anchor, float))))
+    height = max(abs(float(scene.ends.hang_off[1])), 1.0)
+    ramp = ()
+    if knobs.continuation_steps > 0 and (cinfo["catenary_misfit_m"] > 1e-3 * span
+                                         or cinfo["catenary_below_seabed_m"] > 0.01 * height):
+        # the EI = 0 start is unusable (its buoyant part dips far below the seabed, which
+        # clamping onto it makes far too short, or it misses the hang-off)
+        wu = float(np.sum(np.abs(mesh.weight_pl) * mesh.l0) / np.sum(mesh.l0))
+        info["continuation"] = (
+            f"the EI = 0 catenary start passed {cinfo['catenary_below_seabed_m']:.3g} m "
+            f"below the seabed (misfit {cinfo['catenary_misfit_m']:.3g} m): started "
+            f"from a uniform line of {wu:.4g} N/m and ramped the weight to the "
+            f"scene's in {knobs.continuation_steps} steps on the {h:g} m mesh")
+        X, D, cinfo = catenary_shape(scene, mesh.s, uniform_weight=wu)
+        ramp = (wu, knobs.continuation_steps)
+    tensions = cinfo.pop("element_tension")
+    info.update(cinfo)
+    return X, D, tensions, cinfo["catenary_H"], ramp
+
+
+def interpolated_start(scene, coarse: Model, mesh: Mesh):
+    """A finer mesh's start: the coarser equilibrium interpolated (cubic spline in s; linear
+    where the spline overshoots below the seabed), clamped ends keeping their direction.
+    Returns (X, D, element tensions [N] interpolated to the new elements' midpoints)."""
+    X, D = interpolate_state(coarse.mesh.s, coarse.positions(), mesh.s)
+    for end in coarse.clamped:          # a clamped end keeps its direction
+        j = 0 if end == "bottom" else -1
+        D[j] = coarse.D[:, j]
+    if scene.seabed is not None:
+        # the cubic spline overshoots below the seabed around the touchdown kink (7 cm
+        # from a 10 m mesh): with a stiff seabed (1e10 N/m2) that penetration launches the
+        # nodes at > 1 km/s; take the linear interpolation there
+        ylin = np.interp(mesh.s, coarse.mesh.s, coarse.X[1])
+        X[:, 1] = np.where(X[:, 1] < 0.0, np.maximum(X[:, 1], ylin), X[:, 1])
+    Nc = coarse.nodal_results()["element_tension"]
+    sc_mid = 0.5 * (coarse.mesh.s[1:] + coarse.mesh.s[:-1])
+    return X, D, np.interp(0.5 * (mesh.s[1:] + mesh.s[:-1]), sc_mid, Nc)
+
+
+def stage_model(scene, mesh: Mesh, X, D, tensions, tension: float, knobs: RelaxationKnobs,
+                planar: bool):
+    """The model of one mesh stage, started at (X, D) made length-consistent with the
+    element ``tensions`` [N] (see :func:`vfife.mesh.length_consistent`), with its axial
+    dashpot, contact damping, fictitious inertia and time step. ``tension`` [N]: the
+    line's representative tension (critical steps). Returns (model, dt [s], what limits
+    it, the critical steps, the fictitious inertia's figures)."""
+    # element lengths consistent with the tension (stretch l0 (1 + N/EA)): a stiff line
+    # must not start with chord-length errors
+    free = None
+    if scene.seabed is not None:
+        free = ~((X[:-1, 1] <= 1e-6) & (X[1:, 1] <= 1e-6))
+    X = length_consistent(X, mesh.l0 * (1.0 + tensions / mesh.EA), free)
+    model = Model(scene, mesh, rot_scale=knobs.rot_scale, added_mass=False, planar=planar,
+                  flow="static")
+    model.set_state(X, D)
+    model.set_axial_dashpot(axial_dashpot(mesh, knobs.axial_damping))
+    # critical steps of the mesh actually relaxed, with its contact spring and damping and
+    # the axial dashpot
+    steps = critical_steps(mesh, rot_scale=knobs.rot_scale, tension=2.0 * tension,
+                           seabed_stiffness=knobs.seabed_stiffness,
+                           seabed_damping=model.cseabed, axial_damping=model.eta)
+    iinfo: dict = {}
+    if knobs.fictitious:
+        if knobs.seabed_stiffness > 0.0:
+            # critical contact damping (it vanishes at rest): undamped, a node resting on
+            # the penalty spring can bounce without end (module docstring); the fictitious
+            # contact mass of static_inertia keeps the damped spring stable at the step
+            model.seabed_zeta = max(model.seabed_zeta, min(knobs.contact_damping, 1.0))
+        contact = None
+        if scene.seabed is not None:
+            band = 0.1 * max(abs(float(scene.ends.hang_off[1])), 1.0)
+            contact = X[:, 1] < band
+        dt, mass, J, iinfo = static_inertia(
+            mesh, rot_scale=knobs.rot_scale, tension=2.0 * np.max(np.abs(tensions)),
+            safety=knobs.safety, seabed_stiffness=knobs.seabed_stiffness,
+            seabed_zeta=model.seabed_zeta, contact=contact, axial_damping=model.eta)
+        limit = "axial (fictitious inertia elsewhere)"
+        model.set_static_inertia(mass, J)
+    else:
+        dt, limit = choose_step(steps, knobs.safety)
+    if knobs.fixed_time_step is not None:     # expert: fixed step (may exceed the critical)
+        dt, limit = float(knobs.fixed_time_step), "user ([vfife] static_time_step)"
+    return model, dt, limit, steps, iinfo
+
+
+def weight_ramp(model: Model, dt: float, c: float, ramp: tuple, budget: int, label: str,
+                progress=None) -> int:
+    """Ramp the weight from the uniform line's to the scene's in ``ramp`` = (uniform weight
+    [N/m], steps) loose relaxations at damping ``c`` [1/s]; returns the steps taken (the
+    model ends with the scene's weight)."""
+    w_true = model.wload.copy()
+    w_uniform = model.mesh.lump(np.full(model.mesh.ne, ramp[0]))
+    taken = 0
+    for j in range(1, ramp[1]):
+        lam = j / ramp[1]
+        model.wload = (1.0 - lam) * w_uniform + lam * w_true
+        rr = relax(model, dt, c, 1e-2, max(1, budget // (4 * ramp[1])), progress=progress,
+                   label=f"{label}, weight ramp {lam:.2f}")
+        taken += rr["steps"]
+        if rr["status"] is RelaxOutcome.BLOW_UP:
+            break
+    model.wload = w_true
+    return taken
+
+
+def relax_stage(model: Model, dt: float, omega1: float, first: bool, tolerance: float,
+                budget: int, knobs: RelaxationKnobs, label: str, progress=None) -> dict:
+    """Relax one mesh stage (:func:`vfife.relaxation.relax`). The first stage (or a
+    single-stage run from the catenary) at the coarse damping. A fine stage of a sequence:
+    heavy damping until the force residual is met (the short waves of the interpolated
+    start decay at c/2); if the long modes still creep after a few windows, the coarse
+    damping for them (they decay at omega^2 / c): buoyancy sections whose ends fall inside
+    a coarse element move the long modes on the fine mesh (yu2021-a3 at 1 m took 4.8e6
+    steps at 30 x, 7.4e5 at 3 x), while short waves need the heavy damping (Wang baseline:
+    3.6e4 at 30 x, 4.2e5 at 3 x; hard-stiff stalls at 1.4e-3 at 3 x)."""
+    ctol = knobs.creep_tol_m if knobs.creep_tol_m > 0 else None
+    if first:
+        return relax(model, dt, knobs.damping * 2.0 * omega1, tolerance, budget,
+                     progress=progress, label=label, creep_tol=ctol)
+    c = (knobs.damping_current if model.use_drag else knobs.damping_fine) * 2.0 * omega1
+    r = relax(model, dt, c, tolerance, budget, progress=progress, label=label,
+              creep_tol=ctol, creep_windows=4 if ctol is not None else None)
+    if r["status"] is RelaxOutcome.CREEPING and budget > r["steps"]:
+        r2 = relax(model, dt, knobs.damping * 2.0 * omega1, tolerance, budget - r["steps"],
+                   progress=progress, label=f"{label}, long modes", creep_tol=ctol)
+        r2["steps"] += r["steps"]
+        r2["wall_s"] += r["wall_s"]
+        r2["damping"] = f"{c:.3g} then {r2['damping']:.3g}"
+        r = r2
+    return r
+
+
 def solve_static(scene, element_length: float, tolerance: float, planar: bool,
                  progress=None) -> tuple[Model, dict]:
     """Static equilibrium of a fixed-ends scene; returns (fine model, info dict).
-    ``progress``: optional callable(message), told of each mesh stage's relaxation."""
-    vf = scene.vfife                    # riser.settings.VFIFESettings (defaults there)
-    safety = vf.time_step_safety
-    rot_scale = vf.rotational_inertia_scale
-    max_steps = vf.max_steps
-    h_coarse = vf.coarse_element_length
-    zeta_a = vf.static_axial_damping
-    cfac = vf.static_damping
-    cfac_fine = vf.static_damping_fine
-    cfac_current = vf.static_damping_current
-    creep_tol = vf.creep_tolerance * float(sum(sg.length for sg in scene.segments))
-    fictitious = vf.static_fictitious_inertia
-    zeta_c = vf.static_contact_damping
-    cont_steps = vf.static_weight_continuation_steps
+    ``progress``: optional callable(message), told of each mesh stage's relaxation.
 
-    kseabed = scene.seabed.stiffness if scene.seabed is not None else 0.0
-    stages = mesh_sequence(h_coarse, element_length)
-    cf_next = cfac_current if (scene.current is not None
-                               and scene.current.max_abs_speed > 0.0) else cfac_fine
-    damp = (f"{cfac:g} x on the first mesh, {cf_next:g} x on the next ones (then {cfac:g} x "
-            "while long modes creep)" if len(stages) > 1 else f"{cfac:g} x")
-    damp += " critical of mode 1"
-    info: dict = {"static_scheme": "catenary start, dynamic relaxation, mesh sequencing "
-                  f"{' -> '.join(f'{s:g}' for s in stages)} m, viscous mass-proportional damping "
-                  f"{damp}, axial dashpot {zeta_a:g} x critical at the "
-                  f"highest axial frequency (stiffness-proportional), rotational inertia "
-                  f"x{rot_scale:g}"
-                  + (", fictitious nodal masses and rotational inertias where the bending, "
-                     "rotation or seabed spring would limit the step below the axial one "
-                     "(contact damping 1 x critical)" if fictitious else "")
-                  + ", length-consistent starting shapes; fictitious inertia "
-                  "and damping only, the equilibrium and the out-of-balance force "
-                  "(fictitious damping not counted) are unchanged"}
-    fixed_dt = vf.static_time_step
+    Per mesh of the sequence (module docstring): its start (the catenary on the first,
+    the coarser equilibrium interpolated on the next), its model and step
+    (:func:`stage_model`), the weight ramp where the catenary start was unusable, and the
+    relaxation (:func:`relax_stage`)."""
+    knobs = RelaxationKnobs.of(scene)
+    stages = mesh_sequence(knobs.coarse_element_length, element_length)
+    next_damping = (knobs.damping_current if (scene.current is not None
+                                              and scene.current.max_abs_speed > 0.0)
+                    else knobs.damping_fine)
+    info: dict = {"static_scheme": scheme_text(knobs, stages, next_damping)}
     model = None
     total_steps = 0
     for si, h in enumerate(stages):
-        stage = f"{h:g} m mesh ({si + 1}/{len(stages)})"      # progress messages
+        label = f"{h:g} m mesh ({si + 1}/{len(stages)})"      # progress messages
         mesh = build_mesh(scene, h)
+        ramp = ()
         if model is None:
-            X, D, cinfo = catenary_shape(scene, mesh.s)
-            span = float(np.hypot(*(np.asarray(scene.ends.hang_off, float)
-                                    - np.asarray(scene.ends.anchor, float))))
-            height = max(abs(float(scene.ends.hang_off[1])), 1.0)
-            ramp = ()
-            if cont_steps > 0 and (cinfo["catenary_misfit_m"] > 1e-3 * span
-                                   or cinfo["catenary_below_seabed_m"] > 0.01 * height):
-                # the EI = 0 start is unusable (its buoyant part dips far below the seabed,
-                # which clamping onto it makes far too short, or it misses the hang-off):
-                # start from the catenary of a uniform line and ramp the weight to the
-                # scene's (continuation in buoyancy; the start only, not the equilibrium)
-                wu = float(np.sum(np.abs(mesh.weight_pl) * mesh.l0) / np.sum(mesh.l0))
-                info["continuation"] = (
-                    f"the EI = 0 catenary start passed {cinfo['catenary_below_seabed_m']:.3g} m "
-                    f"below the seabed (misfit {cinfo['catenary_misfit_m']:.3g} m): started "
-                    f"from a uniform line of {wu:.4g} N/m and ramped the weight to the "
-                    f"scene's in {cont_steps} steps on the {h:g} m mesh")
-                X, D, cinfo = catenary_shape(scene, mesh.s, uniform_weight=wu)
-                ramp = (wu, cont_steps)
-            Ne = cinfo.pop("element_tension")
-            info.update(cinfo)
-            tension = cinfo["catenary_H"]
+            X, D, tensions, tension, ramp = catenary_start(scene, mesh, h, knobs, info)
         else:
-            X, D = interpolate_state(model.mesh.s, model.positions(), mesh.s)
-            for end in model.clamped:          # a clamped end keeps its direction
-                j = 0 if end == "bottom" else -1
-                D[j] = model.D[:, j]
-            if scene.seabed is not None:
-                # the cubic spline overshoots below the seabed around the touchdown kink
-                # (7 cm from a 10 m mesh): with a stiff seabed (1e10 N/m2) that penetration
-                # launches the nodes at > 1 km/s; take the linear interpolation there
-                ylin = np.interp(mesh.s, model.mesh.s, model.X[1])
-                X[:, 1] = np.where(X[:, 1] < 0.0, np.maximum(X[:, 1], ylin), X[:, 1])
-            Nc = model.nodal_results()["element_tension"]
-            sc_mid = 0.5 * (model.mesh.s[1:] + model.mesh.s[:-1])
-            Ne = np.interp(0.5 * (mesh.s[1:] + mesh.s[:-1]), sc_mid, Nc)
-        # element lengths consistent with the tension (stretch l0 (1 + N/EA)): a stiff line
-        # must not start with chord-length errors (see :func:`length_consistent`)
-        free = None
-        if scene.seabed is not None:
-            free = ~((X[:-1, 1] <= 1e-6) & (X[1:, 1] <= 1e-6))
-        X = length_consistent(X, mesh.l0 * (1.0 + Ne / mesh.EA), free)
-        new = Model(scene, mesh, rot_scale=rot_scale, added_mass=False, planar=planar,
-                    flow="static")
-        new.set_state(X, D)
-        new.set_axial_dashpot(axial_dashpot(mesh, zeta_a))
-        # critical steps of the mesh actually relaxed, with its contact spring and damping
-        # and the axial dashpot
-        steps = critical_steps(mesh, rot_scale=rot_scale, tension=2.0 * tension,
-                               seabed_stiffness=kseabed, seabed_damping=new.cseabed,
-                               axial_damping=new.eta)
+            X, D, tensions = interpolated_start(scene, model, mesh)
+        new, dt, limit, steps, iinfo = stage_model(scene, mesh, X, D, tensions, tension,
+                                                   knobs, planar)
         # the coarse stage only provides a starting shape: at most half of the budget
-        budget = max_steps - total_steps
+        budget = knobs.max_steps - total_steps
         if si < len(stages) - 1:
             budget = max(1, budget // 2)
-        iinfo: dict = {}
-        if fictitious:
-            if kseabed > 0.0:
-                # critical contact damping (it vanishes at rest): undamped, a node resting on
-                # the penalty spring can bounce without end, because the explicit step across
-                # the contact kink feeds it energy. With a spring resolved by ~1.6 rad per step
-                # (hard-coarse-elements, 20 m: 1.14 element weights after 5e6 steps), and as a
-                # period-10-step limit cycle on a well resolved one (yu2021-a3, 4 m stage with
-                # a 1e-7 creep test: node 2 lifting 2e-5 m off the seabed every cycle, stuck
-                # at ~0.8 element weights for 1.5e7 steps). The fictitious contact mass of
-                # static_inertia keeps the damped spring stable at the axial step.
-                new.seabed_zeta = max(new.seabed_zeta, min(zeta_c, 1.0))
-            contact = None
-            if scene.seabed is not None:
-                band = 0.1 * max(abs(float(scene.ends.hang_off[1])), 1.0)
-                contact = X[:, 1] < band
-            dt, mass, J, iinfo = static_inertia(
-                mesh, rot_scale=rot_scale, tension=2.0 * np.max(np.abs(Ne)), safety=safety,
-                seabed_stiffness=kseabed, seabed_zeta=new.seabed_zeta,
-                contact=contact, axial_damping=new.eta)
-            limit = "axial (fictitious inertia elsewhere)"
-            new.set_static_inertia(mass, J)
-        else:
-            dt, limit = choose_step(steps, safety)
-        if fixed_dt is not None:              # expert: fixed step (may exceed the critical)
-            dt, limit = float(fixed_dt), "user ([vfife] static_time_step)"
         om1 = fundamental_omega(mesh, tension)
         if si == 0 and ramp:
-            wl_true = new.wload.copy()
-            wl_uni = mesh.lump(np.full(mesh.ne, ramp[0]))
-            pre = 0
-            for j in range(1, ramp[1]):
-                lam = j / ramp[1]
-                new.wload = (1.0 - lam) * wl_uni + lam * wl_true
-                rr = relax(new, dt, cfac * 2.0 * om1, 1e-2, max(1, budget // (4 * ramp[1])),
-                           progress=progress, label=f"{stage}, weight ramp {lam:.2f}")
-                pre += rr["steps"]
-                if rr["status"] == "blow-up":
-                    break
-            new.wload = wl_true
+            pre = weight_ramp(new, dt, knobs.damping * 2.0 * om1, ramp, budget, label,
+                              progress)
             budget = max(1, budget - pre)
             total_steps += pre
-        # a single-stage run (no coarse mesh) starts from the catenary: coarse damping
-        ctol = creep_tol if creep_tol > 0 else None
-        if si == 0:
-            r = relax(new, dt, cfac * 2.0 * om1, tolerance, budget, progress=progress,
-                      label=stage, creep_tol=ctol)
-        else:
-            # fine stage of a sequence: heavy damping until the force residual is met (the
-            # short waves of the interpolated start decay at c/2); if the long modes still
-            # creep after a few windows, the coarse-stage damping for them (they decay at
-            # omega^2 / c): buoyancy sections whose ends fall inside a coarse element move
-            # the long modes on the fine mesh (yu2021-a3 at 1 m took 4.8e6 steps at 30 x,
-            # 7.4e5 at 3 x), while short waves need the heavy damping (Wang baseline:
-            # 3.6e4 at 30 x, 4.2e5 at 3 x; hard-stiff stalls at 1.4e-3 at 3 x)
-            c = (cfac_current if new.use_drag else cfac_fine) * 2.0 * om1
-            r = relax(new, dt, c, tolerance, budget, progress=progress, label=stage,
-                      creep_tol=ctol, creep_windows=4 if ctol is not None else None)
-            if r["status"] == "creeping" and budget > r["steps"]:
-                r2 = relax(new, dt, cfac * 2.0 * om1, tolerance, budget - r["steps"],
-                           progress=progress, label=f"{stage}, long modes",
-                           creep_tol=ctol)
-                r2["steps"] += r["steps"]
-                r2["wall_s"] += r["wall_s"]
-                r2["damping"] = f"{c:.3g} then {r2['damping']:.3g}"
-                r = r2
+        r = relax_stage(new, dt, om1, si == 0, tolerance, budget, knobs, label, progress)
         r.update(iinfo)
         total_steps += r["steps"]
-        info.setdefault("stages", []).append({"element_length": h, "elements": mesh.ne,
-                                              "time_step": dt, "step_limit": limit,
-                                              "critical_steps": steps,
-                                              **{k: r[k] for k in ("steps", "residual",
-                                                                   "status", "wall_s",
-                                                                   "damping", "creep_m")},
-                                              **{k: r[k] for k in ("dt_axial",
-                                                                   "mass_factor_max",
-                                                                   "rot_factor_max")
-                                                 if k in r}})
+        info.setdefault("stages", []).append(
+            {"element_length": h, "elements": mesh.ne, "time_step": dt, "step_limit": limit,
+             "critical_steps": steps,
+             **{k: r[k] for k in ("steps", "residual", "status", "wall_s", "damping",
+                                  "creep_m")},
+             **{k: r[k] for k in ("dt_axial", "mass_factor_max", "rot_factor_max") if k in r}})
         model = new
-        if r["status"] == "blow-up":
+        if r["status"] is RelaxOutcome.BLOW_UP:
             info["diverged"] = divergence_message(scene, h, dt, limit, steps, r["steps"])
             break
         tension = float(np.mean(np.abs(model.nodal_results()["element_tension"])))
@@ -350,5 +414,5 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
                  "moment_residual": r["moment_residual"], "time_step": last["time_step"],
                  "status": last["status"], "critical_steps": steps,
                  "step_limit": last["step_limit"], "creep_m": last["creep_m"],
-                 "creep_tolerance_m": creep_tol})
+                 "creep_tolerance_m": knobs.creep_tol_m})
     return model, info

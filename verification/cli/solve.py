@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from riser.result import METHODS
+from riser.result import METHODS, Status
 from verification.catalog import list_builtin, resolve
 from verification.runtime import outdir
 
@@ -28,6 +28,9 @@ def cmd_solve(args) -> int:
     with progress_for(args, f"solve {scene.name} [{args.method}]") as prog:
         res = pipeline.solve_scene(scene, args.method, tolerance=args.tolerance,
                                    element_length=args.element_length, progress=prog)
+    if res.status is Status.REFUSED:          # before solving, as bad input: nothing written
+        err(res.message)
+        return res.status.exit_code
     res.write(out)
     if not res.converged:
         err(f"{args.method} on {scene.name}: {res.status.value} ({res.status.meaning}): "

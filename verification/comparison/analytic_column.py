@@ -15,7 +15,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import analytic
-from riser.errors import UnsupportedSceneError
+from riser.result import Status
 from verification.pipeline import shifted
 from verification.report.markdown import md_table
 from verification.runtime import outdir
@@ -37,10 +37,9 @@ class AnalyticColumn:
 
     def solve(self, comp, folder: Path | None = None, progress=None) -> ColumnResult:
         """Solve the comparison's matched scene analytically; its rows against the BVP."""
-        try:
-            res = analytic.solve(comp.matched_scene)
-        except UnsupportedSceneError as exc:
-            reason = str(exc).split(": ", 1)[-1]
+        res = analytic.solve(comp.matched_scene)
+        if res.status is Status.REFUSED:
+            reason = res.message.split(": ", 1)[-1]
             return ColumnResult(self, note=f"The analytic method does not apply to this "
                                 f"scene ({reason}).")
         if not res.converged:

@@ -27,7 +27,9 @@ import numpy as np
 
 import vfife.modes
 from riser.callbacks import with_fraction
+from riser.errors import UnsupportedSceneError
 from riser.modes import PLANES, ModalResult, mac, shape_at
+from riser.result import Status
 from verification.pipeline import vfife_equivalent
 from verification.report.figures import new_figure, save
 from verification.report.markdown import GENERATED_NOTE, md_table, pct
@@ -112,8 +114,10 @@ def run_modes(scene, count: int = 10, out: str | Path | None = None,
     results = {}
     for k, (name, module) in enumerate((("bvp", bvp_modes), ("vfife", vfife.modes))):
         say(f"modes: {name}", fraction=0.05 + 0.45 * k)
-        results[name] = _shifted(module.solve_modes(eq.scene, count, progress=progress),
-                                 eq.s_shift)
+        res = module.solve_modes(eq.scene, count, progress=progress)
+        if res.status is Status.REFUSED:            # bad input for the modal analysis
+            raise UnsupportedSceneError(res.message)
+        results[name] = _shifted(res, eq.s_shift)
         results[name].scene = scene.name
     run = ModesRun(scene.name, results, pair_rows(results["bvp"], results["vfife"]), eq.note,
                    eq.s_shift, Path(out) if out is not None else None)

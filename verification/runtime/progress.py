@@ -272,6 +272,34 @@ def forward_output(q) -> None:
     sys.stderr = _Lines(lambda s: q.put((True, s)))
 
 
+class RunCounter:
+    """``k/N runs (what)`` of a sequence of runs of predicted relative costs ``weights``,
+    told to ``progress(message, fraction=f)`` with f the share of the predicted cost done
+    (a :class:`Progress` draws the bar and the ETA from it)."""
+
+    def __init__(self, weights: list[float], progress, what: str = "runs"):
+        self.weights = list(weights)
+        self.send = with_fraction(progress)
+        self.what = what
+        self.done = 0
+
+    @property
+    def total(self) -> int:
+        return len(self.weights)
+
+    def plan(self, weights: list[float]) -> None:
+        """Replace the runs still to come by runs of these predicted costs."""
+        self.weights = self.weights[:self.done] + list(weights)
+
+    def step(self, what: str) -> None:
+        """One more run done (``what``: its one-line description)."""
+        self.done += 1
+        wd, wr = sum(self.weights[:self.done]), sum(self.weights[self.done:])
+        if self.send is not None:
+            self.send(f"{self.done}/{self.total} {self.what} ({what})",
+                      fraction=wd / (wd + wr) if wd + wr > 0 else None)
+
+
 class UnitTracker:
     """``k/N units`` of a run of independent units on ``jobs`` processes, and the fraction
     done weighted by each unit's expected ``seconds``: a finished unit counts its seconds,

@@ -29,7 +29,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from riser.errors import SceneError, SolveFailed, UnsupportedSceneError
+from riser.errors import SceneError, SolveFailed
 from riser.result import Status
 from verification.catalog import SCENE_DIR, resolve
 from verification.comparison.agreement import agreement
@@ -69,8 +69,6 @@ def run_one(name: str, method: str, progress=None) -> tuple[dict, object]:
     try:
         scene = resolve(name)
         res = solve_scene(scene, method, progress=progress)
-    except UnsupportedSceneError as exc:
-        row.update(outcome=OUTCOME[Status.REFUSED], message=str(exc))
     except SceneError as exc:                      # bad input: stopped with its reason
         row.update(outcome="failed", message=str(exc))
     except SolveFailed as exc:

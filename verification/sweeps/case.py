@@ -31,7 +31,7 @@ from pathlib import Path
 
 import numpy as np
 
-from riser.errors import SceneError, SolveFailed, UnsupportedSceneError
+from riser.errors import SceneError, SolveFailed
 from riser.profile import Profile, summarize, write_json
 
 #: the scalar summary quantities kept per method (riser.profile.summarize's names)
@@ -66,7 +66,7 @@ def _solve(scene, method: str) -> tuple[dict, object]:
     t0 = time.perf_counter()
     try:
         res = solve_scene(scene, method)
-    except (SceneError, UnsupportedSceneError) as exc:
+    except SceneError as exc:                     # bad input for this method: refused
         return {"status": "refused", "message": str(exc), "warnings": [],
                 "wall_time_s": time.perf_counter() - t0}, None
     except SolveFailed as exc:

@@ -33,7 +33,7 @@ import pandas as pd
 
 import vfife
 from riser.scene import Dynamics, Scene, TopMotion
-from vfife.dynamics import run_dynamics
+from vfife.dynamics import DynamicsOutcome, run_dynamics
 from vfife.mesh import build_mesh
 from vfife.timestep import critical_steps
 
@@ -261,7 +261,7 @@ def _record(run: DynRun, info: dict, scene: Scene, elements) -> None:
     run.elements, run.time_step, run.steps = elements, info["time_step"], info["steps"]
     run.message = info["message"]
     rng = st.get("dynamic_hang_off_tension_range")
-    run.converged = info["status"] == "ok" and rng is not None and math.isfinite(rng)
+    run.converged = info["status"] is DynamicsOutcome.OK and rng is not None and math.isfinite(rng)
     if not run.converged:
         return
     run.amplitude = 0.5 * rng

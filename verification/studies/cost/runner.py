@@ -4,7 +4,6 @@ progress line, the whole study (:func:`study`) and one unit of ``reproduce cost`
 
 from __future__ import annotations
 
-import sys
 import time
 from pathlib import Path
 
@@ -16,8 +15,8 @@ from riser.scene import Dynamics, Scene, TopMotion
 from verification.catalog import resolve
 from verification.pipeline import vfife_equivalent
 from verification.quantities import raw_values, reference_depth
-from verification.runtime.progress import with_fraction
-from vfife.dynamics import run_dynamics
+from verification.runtime.progress import RunCounter
+from vfife.dynamics import DynamicsOutcome, run_dynamics
 
 from . import dynamics as dyn
 from .analysis import analyse, cost_scaling
@@ -38,45 +37,6 @@ DYNAMICS_DURATION = 1.0
 METHOD_ORDER = {"bvp": 0, "vfife": 1, "vfife-dyn": 2}
 
 
-class Progress:
-    """Runs done / total, elapsed and estimated remaining time on stderr, or handed to
-    ``sink(message, fraction=f)`` (f: predicted share of the cost done; the display of
-    :mod:`verification.runtime.progress` then draws it)."""
-
-    def __init__(self, total: int, label: str, stream=None, weights=None, sink=None):
-        self.total, self.label, self.sink = total, label, sink
-        self.stream = stream if stream is not None else sys.stderr
-        self.t0 = time.perf_counter()
-        self.done = 0
-        self.weights = weights or [1.0] * total   # predicted relative cost of each run
-        self.tty = getattr(self.stream, "isatty", lambda: False)()
-
-    def plan(self, weights: list) -> None:
-        """Replace the runs still to come by runs of these predicted costs."""
-        self.weights = self.weights[:self.done] + list(weights)
-        self.total = len(self.weights)
-
-    def step(self, what: str) -> None:
-        self.done += 1
-        el = time.perf_counter() - self.t0
-        wd = sum(self.weights[:self.done])
-        wr = sum(self.weights[self.done:])
-        rem = el / wd * wr if wd > 0 else float("nan")
-        if self.sink is not None:
-            self.sink(f"{self.done}/{self.total} runs ({what})",
-                      fraction=wd / (wd + wr) if wd + wr > 0 else None)
-            return
-        msg = (f"[cost {self.label}] {self.done}/{self.total} runs, elapsed {el:.0f} s, "
-               f"remaining ~{rem:.0f} s ({what})")
-        if self.tty:
-            self.stream.write("\r" + msg[:150].ljust(150))
-            if self.done == self.total:
-                self.stream.write("\n")
-        else:
-            self.stream.write(msg + "\n")
-        self.stream.flush()
-
-
 def _solve(s: Setting, scene: Scene):
     if s.method == "bvp":
         return bvp.solve(scene, **s.solve_kwargs)
@@ -87,23 +47,25 @@ def _solve(s: Setting, scene: Scene):
 
 def _dynamics_time(s: Setting, scene: Scene, repeats: int, static_cache: dict):
     """Wall time [s] of ``DYNAMICS_DURATION`` s of heave (1 m, 10 s) from the static state
-    of the same mesh (the static solve is not timed here). Returns (times, steps, msg)."""
+    of the same mesh (the static solve is not timed here). Returns (times, steps, msg,
+    whether every timed run completed)."""
     h = s.solve_kwargs["element_length"]
     res = static_cache.get(h)
     if res is None or not res.converged:
-        return [], None, "no converged static state"
+        return [], None, "no converged static state", False
     dyn = Dynamics(duration=DYNAMICS_DURATION, output_interval=DYNAMICS_DURATION / 2,
                    top_motion=TopMotion(axis="y", amplitude=1.0, period=10.0))
     sc = scene.replace(dynamics=dyn)
-    times, steps, msg = [], None, ""
+    times, steps, msg, ok = [], None, "", True
     for _ in range(repeats):
         t0 = time.perf_counter()
         _, info = run_dynamics(sc, res.solver_state, bool(sc.is_planar))
         times.append(time.perf_counter() - t0)
         steps, msg = info["steps"], info["message"]
-        if info["status"] != "ok" or times[-1] > REPEAT_BELOW_S:
+        ok = ok and info["status"] is DynamicsOutcome.OK
+        if not ok or times[-1] > REPEAT_BELOW_S:
             break
-    return times, steps, msg
+    return times, steps, msg, ok
 
 
 def run_setting(s: Setting, scene: Scene, repeats: int, compile_s: float,
@@ -112,8 +74,9 @@ def run_setting(s: Setting, scene: Scene, repeats: int, compile_s: float,
     ``element_length`` result goes into ``static_cache`` for the dynamics runs."""
     run = Run(s)
     if s.method == "vfife-dyn":
-        run.times, run.steps, run.message = _dynamics_time(s, scene, repeats, static_cache)
-        run.converged = bool(run.times) and "blow" not in run.message
+        run.times, run.steps, run.message, ok = _dynamics_time(s, scene, repeats,
+                                                                 static_cache)
+        run.converged = bool(run.times) and ok
         run.compile_time_s = compile_s
         run.size = static_cache[s.value].info["elements"] if s.value in static_cache \
             else None
@@ -140,14 +103,15 @@ def run_setting(s: Setting, scene: Scene, repeats: int, compile_s: float,
 
 
 def study(scene: Scene, *, repeats: int = 3, quick: bool = False, element_lengths=None,
-          settings: list[Setting] | None = None, progress=True,
-          stream=None, full: bool = False, dynamics=None) -> CostStudy:
+          settings: list[Setting] | None = None, progress=None,
+          full: bool = False, dynamics=None) -> CostStudy:
     """Run the study on ``scene`` (see :mod:`verification.studies.cost`): ``settings`` (default
     :func:`~verification.studies.cost.settings.default_settings` of ``quick``, ``element_lengths``
     and ``full``, the order sweep planned from the reference's asymptotic length),
-    each timed as the median of up to ``repeats`` runs; ``progress``: a progress line on
-    ``stream`` (default stderr), False: none, or a callable ``progress(message,
-    fraction=None)`` told of each finished run (:mod:`verification.runtime.progress`).
+    each timed as the median of up to ``repeats`` runs; ``progress``: a callable
+    ``progress(message, fraction=None)`` told of each finished run, ``k/N runs`` with the
+    share of the predicted cost done (:class:`verification.runtime.progress.RunCounter`;
+    a :class:`~verification.runtime.progress.Progress` draws it), None or False: quiet.
     ``dynamics``: the dynamic sweep (:mod:`verification.studies.cost.dynamics`); None: the
     default of the sweep (fast, full or quick; none with given ``settings``), False: none,
     or (element length, step factor) pairs."""
@@ -165,8 +129,8 @@ def study(scene: Scene, *, repeats: int = 3, quick: bool = False, element_length
         else "fast"
     dyn_settings = _dynamic_plan(fixed, sweep, dynamics, element_lengths)
     runs, ref, dyn_runs, static_s, sweep_s = _solve_all(
-        scene, fixed, settings, (quick, element_lengths, full), repeats, compile_s, progress,
-        stream, dyn_settings)
+        scene, fixed, settings, (quick, element_lengths, full), repeats, compile_s,
+        progress or None, dyn_settings)
     ref_sm = summarize(ref.profile)
     depth = reference_depth(fixed, ref_sm)
     ref_values = raw_values(ref.profile)
@@ -207,7 +171,7 @@ def _dynamic_plan(fixed: Scene, sweep: str, dynamics, element_lengths=None) -> l
 
 
 def _solve_all(scene: Scene, fixed: Scene, settings, plan: tuple, repeats: int,
-               compile_s: float, progress, stream, dyn_settings=()) -> tuple:
+               compile_s: float, progress, dyn_settings=()) -> tuple:
     """Every setting solved on ``fixed`` (BVP first); without given ``settings`` the VFIFE
     ones are planned once the reference is known, from ``plan`` = (quick,
     element_lengths, full) of :func:`default_settings`; then the dynamic runs
@@ -220,10 +184,8 @@ def _solve_all(scene: Scene, fixed: Scene, settings, plan: tuple, repeats: int,
         settings = default_settings(fixed, quick, element_lengths, full=full)
     settings = sorted(settings, key=lambda s: METHOD_ORDER[s.method])
     dyn_weights = [dyn.predicted_cost(fixed, s) for s in dyn_settings]
-    prog = Progress(len(settings) + len(dyn_settings), scene.name, stream,
-                    [predicted_cost(s) for s in settings] + dyn_weights,
-                    sink=with_fraction(progress) if callable(progress) else None) \
-        if progress else None
+    prog = RunCounter([predicted_cost(s) for s in settings] + dyn_weights, progress) \
+        if progress is not None else None
     runs: list[Run] = []
     static_cache: dict = {}
     ref = None
@@ -269,8 +231,7 @@ def run_unit(scene_name: str, out: Path, note: str = "", full: bool = False) -> 
     """The study of one built-in scene into ``out/scene_name`` (``note``: a sentence on
     the timings, added to the report's notes; ``full``: the full sweep, ``--full``);
     returns the log line."""
-    st = study(resolve(scene_name), progress=False,     # reproduce shows its own progress
-               full=full)
+    st = study(resolve(scene_name), full=full)     # reproduce shows its own progress
     if note:
         st.notes.append(note)
     write(st, out / scene_name)

@@ -32,7 +32,8 @@ import numpy as np
 import pandas as pd
 from scipy.optimize import brentq
 
-from riser.errors import SolveFailed, UnsupportedSceneError
+from riser.errors import SolveFailed
+from riser.result import Status
 from riser.scene import Current, Ends, Scene
 from verification.catalog import resolve
 from verification.pipeline import solve_scene
@@ -239,10 +240,9 @@ def _solve(sc: Scene, method: str, element_length, solved: list):
     not converge or was refused before solving."""
     res = next((r for s, k, r in solved if k == method and s == sc), None)
     if res is None:
-        try:
-            res = solve_scene(sc, method, element_length=element_length)
-        except UnsupportedSceneError as exc:
-            return None, str(exc)
+        res = solve_scene(sc, method, element_length=element_length)
+        if res.status is Status.REFUSED:
+            return None, res.message
         solved.append((sc, method, res))
     return (res, "") if res.converged else (None, res.message)
 
