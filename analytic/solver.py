@@ -27,7 +27,7 @@ from riser import validity
 from riser.errors import UnsupportedSceneError
 from riser.internal_flow import wall_tension
 from riser.result import SolveResult, Status
-from riser.scene import Scene
+from riser.scene import HangOffAngleEnds, Scene, TdpTensionEnds, TopTensionEnds
 from riser.sections import segment_properties
 from riser.settings import AnalyticSettings
 
@@ -90,12 +90,12 @@ def line_of(scene: Scene) -> Line:
 def _outer(scene: Scene, line: Line, model: str):
     with_layer = model != "catenary"
     e = scene.ends
-    if e.kind == "tdp_tension":
+    if isinstance(e, TdpTensionEnds):
         return forms.tdp_tension(line, e.tdp_tension, with_layer)
-    if e.kind == "hang_off_angle":
+    if isinstance(e, HangOffAngleEnds):
         return forms.hang_off_angle(line, e.hang_off_height, math.radians(e.hang_off_angle_deg),
                                     with_layer, top_layer=model == "composite")
-    if e.kind == "top_tension":
+    if isinstance(e, TopTensionEnds):
         # only the first segment's length is solved in the Wang forms: the whole line here
         return forms.top_tension(line, e.hang_off_height, e.top_tension, with_layer)
     return forms.fixed(line, e.anchor, e.hang_off, scene.seabed is not None, with_layer)
@@ -154,7 +154,8 @@ def _solve(scene: Scene) -> SolveResult:
                 f"{scene.source}: analytic.curvature_threshold: must be < the catenary's "
                 f"touchdown curvature w/H = {kappa0:.6g} 1/m, got {threshold:g}")
         info["curvature_threshold"] = threshold
-    total = line.length if scene.ends.kind in ("fixed", "tdp_tension") else outer.suspended
+    solved_first = isinstance(scene.ends, (HangOffAngleEnds, TopTensionEnds))
+    total = outer.suspended if solved_first else line.length
     profile, extra = build(outer, line, model, total, threshold=threshold)
     info.update(extra)
     if model == "piecewise" and extra["piecewise_s_E"] >= total:
@@ -173,7 +174,7 @@ def _solve(scene: Scene) -> SolveResult:
         return result(Status.DIVERGED, bad)
     message = f"converged ({model}; closed form, H = {H:.6g} N)"
     lengths = [g.length for g in scene.segments]
-    if scene.ends.kind in ("hang_off_angle", "top_tension"):
+    if solved_first:
         info["first_segment_suspended_length"] = outer.suspended
         message += f"; suspended length {outer.suspended:.3f} m"
         lengths = [outer.suspended]

@@ -7,7 +7,7 @@ import dataclasses
 import statistics
 import time
 
-from riser.scene import Ends, Scene
+from riser.scene import HangOffAngleEnds, Scene
 
 from .solver import solve
 
@@ -36,8 +36,8 @@ def run_bench(baseline: Scene, current_scenes: list[Scene], repeats: int = 5) ->
             _timed(s)
             n += 1
     for sc in current_scenes:
-        _timed(sc.replace(ends=Ends("hang_off_angle", hang_off_height=sm["hang_off_height"],
-                                    hang_off_angle_deg=sm["hang_off_angle_deg"])))
+        _timed(sc.replace(ends=HangOffAngleEnds(hang_off_height=sm["hang_off_height"],
+                                                hang_off_angle_deg=sm["hang_off_angle_deg"])))
         n += 1
     return {"bvp_baseline_s": statistics.median(times), "bvp_baseline_runs": repeats,
             "bvp_table2_s": time.perf_counter() - t0, "bvp_table2_solves": n}

@@ -12,7 +12,7 @@ Material (unstretched) arc length s [m] from the bottom end; the state (SI units
         T      effective tension [N] (the tangential component of P)
 
 Conventions (the same as the VFIFE elements, written independently in
-``vfife/kernels.py``; see README "One model, two methods"):
+``vfife/kernels.py``; see docs/theory.md, "One model, two methods"):
 
 - axial strain eps = T / EA (EA [N]); a material element ds occupies (1 + eps) ds;
   ``EA = inf`` is the inextensible limit (Wang's model);

@@ -87,7 +87,7 @@ from riser.callbacks import with_fraction
 from riser.errors import UnsupportedSceneError
 from riser.modes import PLANES, ModalResult, Mode, mac, normalise_shape, shape_at
 from riser.result import SolveResult, Status
-from riser.scene import Scene
+from riser.scene import FixedEnds, Scene
 
 from .mesh import clustered_mesh
 from .modal_equations import FAMILIES, Family, Piece, box_modes, build_pieces
@@ -184,7 +184,7 @@ def solve_modes(scene: Scene, count: int = 10, *, static: SolveResult | None = N
 
 def _require_modal(scene: Scene) -> None:
     """Refuse what the linearisation does not represent (before solving)."""
-    if scene.ends.kind != "fixed":
+    if not isinstance(scene.ends, FixedEnds):
         raise UnsupportedSceneError(
             f"{scene.source}: ends: bvp modes need fixed ends (anchor + hang_off), the scene "
             f"gives the '{scene.ends.kind}' form (convert it with "

@@ -41,7 +41,7 @@ import numpy as np
 from riser import validity
 from riser.internal_flow import wall_tension
 from riser.result import SolveResult, Status
-from riser.scene import Scene
+from riser.scene import FixedEnds, HangOffAngleEnds, Scene, TdpTensionEnds, TopTensionEnds
 from riser.sections import segment_properties
 
 from . import guess as guesses
@@ -74,8 +74,9 @@ def effects_of(scene: Scene) -> list[str]:
         eff.append("axial")
     if scene.current is not None:
         eff.append("current_drag")
-    if scene.seabed_model is not None and (scene.ends.kind != "fixed" or scene.seabed_model ==
-                                           "elastic" or scene.ends.anchor[1] == 0.0):
+    if scene.seabed_model is not None and (not isinstance(scene.ends, FixedEnds)
+                                           or scene.seabed_model == "elastic"
+                                           or scene.ends.anchor[1] == 0.0):
         eff.append("seabed")
     if scene.internal_flow is not None:
         eff.append("internal_flow")
@@ -166,11 +167,11 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
         return result(Status.DIVERGED, bad)
     message = f"converged ({how})"
     lengths = [g.length for g in scene.segments]
-    if scene.ends.kind in ("hang_off_angle", "top_tension"):
+    if isinstance(scene.ends, (HangOffAngleEnds, TopTensionEnds)):
         lengths[0] = checks["first_segment_suspended_length"]
         note, warn = validity.first_segment_warnings(scene, lengths[0])
         info["first_segment_length_in_file"] = scene.segments[0].length
-        if scene.ends.kind == "top_tension" and lengths[0] > scene.segments[0].length:
+        if isinstance(scene.ends, TopTensionEnds) and lengths[0] > scene.segments[0].length:
             return result(Status.NO_EQUILIBRIUM, "no equilibrium: " + note)
         message += "; " + note
         warnings.extend(warn)
@@ -227,19 +228,21 @@ def _build_problem(scene: Scene, split: bool = True) -> _Problem:
     length_scale = float(np.sum(L))
     k_seabed = scene.seabed.stiffness if scene.seabed_model == "elastic" else 0.0
 
-    # ---- catenary starting guess for each form: (H, V0, suspended lengths, origin)
+    # ---- catenary starting guess for each form: (H, V0, suspended lengths, origin); the
+    # problem's form is the end form's kind, a fixed-ends one refined below (its boundary
+    # conditions: fixed_seabed, fixed_liftoff, fixed_elastic, fixed)
     form = ends.kind
     anchor = (0.0, 0.0)
     free_first = False
     extensible = scene.axial_model == "extensible"
     cat_EA = None             # the elastic catenary between pinned ends (else inextensible)
-    if form == "tdp_tension":
+    if isinstance(ends, TdpTensionEnds):
         H, V0, Ls = ends.tdp_tension, 0.0, L.copy()
-    elif form == "hang_off_angle":
+    elif isinstance(ends, HangOffAngleEnds):
         free_first = True
         H, V0, Ls = guesses.hang_off_angle(w, L, ends.hang_off_height,
                                            math.radians(ends.hang_off_angle_deg))
-    elif form == "top_tension":
+    elif isinstance(ends, TopTensionEnds):
         free_first = True
         H, V0, Ls = guesses.top_tension(w, L, ends.hang_off_height, ends.top_tension)
     else:

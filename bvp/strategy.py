@@ -13,7 +13,7 @@ import numpy as np
 from scipy.integrate import solve_bvp
 
 from riser.result import Status
-from riser.scene import Scene
+from riser.scene import FixedEnds, Scene, TopTensionEnds
 from riser.sections import segment_properties
 from riser.settings import BVPSettings
 
@@ -141,9 +141,9 @@ def hopeless_span(scene: Scene) -> str:
     that reaches the seabed (:func:`bvp.guess.top_tension_reach`), else ''. Geometry and
     weights only, before any guess is built."""
     ends = scene.ends
-    if ends.kind == "top_tension":
+    if isinstance(ends, TopTensionEnds):
         return _too_little_tension(scene)
-    if ends.kind != "fixed" or scene.seabed_model is None:
+    if not isinstance(ends, FixedEnds) or scene.seabed_model is None:
         return ""
     if scene.seabed_model == "rigid" and ends.anchor[1] != 0.0:
         return ""              # free-hanging form, no contact: see hopeless_start

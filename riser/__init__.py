@@ -5,14 +5,52 @@ from .errors import SceneError, SolveFailed, UnsupportedSceneError
 from .io.scene_file import load_scene, parse_scene, scene_from_dict
 from .profile import Profile, summarize
 from .result import DynamicsResult, SolveResult, Status
-from .scene import Current, Dynamics, Ends, LineType, Scene, Seabed, Segment, TopMotion
+from .scene import (
+    Current,
+    Dynamics,
+    Ends,
+    FixedEnds,
+    HangOffAngleEnds,
+    InternalFlow,
+    LineType,
+    Scene,
+    Seabed,
+    Segment,
+    TdpTensionEnds,
+    TopMotion,
+    TopTensionEnds,
+)
 from .sections import SegmentProperties, segment_properties
-from .settings import BVPSettings, VFIFESettings
+from .settings import AnalyticSettings, BVPSettings, VFIFESettings
 
 __all__ = [
-    "SceneError", "SolveFailed", "UnsupportedSceneError", "Profile", "summarize",
-    "DynamicsResult", "SolveResult", "Status", "Current", "Dynamics", "Ends", "LineType",
-    "Scene", "Seabed", "Segment", "TopMotion", "load_scene", "parse_scene",
-    "scene_from_dict", "SegmentProperties", "segment_properties", "BVPSettings",
+    "AnalyticSettings",
+    "BVPSettings",
+    "Current",
+    "Dynamics",
+    "DynamicsResult",
+    "Ends",
+    "FixedEnds",
+    "HangOffAngleEnds",
+    "InternalFlow",
+    "LineType",
+    "Profile",
+    "Scene",
+    "SceneError",
+    "Seabed",
+    "Segment",
+    "SegmentProperties",
+    "SolveFailed",
+    "SolveResult",
+    "Status",
+    "TdpTensionEnds",
+    "TopMotion",
+    "TopTensionEnds",
+    "UnsupportedSceneError",
     "VFIFESettings",
+    "load_scene",
+    "parse_scene",
+    "scene_from_dict",
+    "segment_properties",
+    "summarize",
 ]

@@ -39,24 +39,37 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import SceneError
+from .spec import Part, spec
 
 #: largest |speed| accepted [m/s] (production flow is a few m/s; 50 catches unit slips)
 MAX_FLOW_SPEED = 50.0
+#: the slug's keys sit in the sub-table [internal_flow.slug]
+SLUG = "slug"
+IN_SLUG = "required in [internal_flow.slug]"
 
 
 @dataclass(frozen=True)
-class InternalFlow:
+class InternalFlow(Part):
     """Steady internal flow, optionally with a steady slug (see the module docstring).
 
     speed [m/s]; top_pressure [Pa, gauge]; density_amplitude eta [-] (0: uniform
-    contents); slug_length [m] (None without a slug); phase_deg [deg].
+    contents); slug_length [m] (None without a slug); phase_deg [deg]. The slug's keys sit
+    in the file's ``[internal_flow.slug]``, which needs density_amplitude and slug_length.
     """
 
-    speed: float
-    top_pressure: float = 0.0
-    density_amplitude: float = 0.0
-    slug_length: float | None = None
-    phase_deg: float = 0.0
+    speed: float = spec(ge=-MAX_FLOW_SPEED, le=MAX_FLOW_SPEED, unit="m/s",
+                        doc="speed of the contents relative to the pipe, positive from "
+                            "the bottom end to the hang-off")
+    top_pressure: float = spec(0.0, ge=-1.01325e5, le=1.0e9, unit="Pa",
+                               doc="gauge pressure of the contents at the hang-off (the "
+                                   "reported wall tension only)")
+    density_amplitude: float = spec(0.0, ge=0.0, lt=1.0, table=SLUG, default_doc=IN_SLUG,
+                                    doc="eta of rho_f = rho_0 (1 + eta cos(k s - omega t "
+                                        "+ psi)); 0: uniform contents")
+    slug_length: float | None = spec(None, gt=0.0, le=1.0e5, unit="m", table=SLUG,
+                                     default_doc=IN_SLUG, doc="slug length L_s = 2 pi / k")
+    phase_deg: float = spec(0.0, ge=-360.0, le=360.0, unit="deg", table=SLUG,
+                            doc="phase psi of the slug at s = 0, t = 0")
 
     @property
     def has_slug(self) -> bool:
@@ -88,23 +101,6 @@ class InternalFlow:
             return np.ones_like(s)
         return 1.0 + self.density_amplitude * np.cos(
             self.wavenumber * s - self.omega * t + math.radians(self.phase_deg))
-
-
-def read_internal_flow(t) -> InternalFlow:
-    """The [internal_flow] table ``t`` (a :class:`riser.io.toml_table.Table`) with its optional
-    [internal_flow.slug]; the line types are checked by :func:`check_internal_flow`."""
-    slug_t = t.table("slug")
-    speed = t.number("speed", ge=-MAX_FLOW_SPEED, le=MAX_FLOW_SPEED, unit="m/s")
-    top = t.number("top_pressure", 0.0, ge=-1.01325e5, le=1.0e9, unit="Pa")
-    eta, length, phase = 0.0, None, 0.0
-    if slug_t is not None:
-        eta = slug_t.number("density_amplitude", ge=0.0, lt=1.0)
-        length = slug_t.number("slug_length", gt=0.0, le=1.0e5, unit="m")
-        phase = slug_t.number("phase_deg", 0.0, ge=-360.0, le=360.0, unit="deg")
-        slug_t.finish()
-    t.finish()
-    return InternalFlow(speed=speed, top_pressure=top, density_amplitude=eta,
-                        slug_length=length, phase_deg=phase)
 
 
 def contents_mass_per_length(scene) -> float:

@@ -139,7 +139,7 @@ def waves(profile: Profile, min_prominence: float | None = None) -> tuple[list[d
 
 
 def summarize(profile: Profile) -> dict:
-    """Scalar features of a static profile (see README: result columns)."""
+    """Scalar features of a static profile (see docs/results.md, summary.json)."""
     s = profile.s
 
     def peak(values: np.ndarray) -> tuple[float, float]:

@@ -1,13 +1,17 @@
-"""The scene: an immutable description of one line and its environment (read from a
-file by :mod:`riser.io.scene_file`).
+"""The scene: an immutable, self-validating description of one line and its environment
+(read from a file by :mod:`riser.io.scene_file`, or built in code).
 
 Conventions (SI throughout): x horizontal from the anchor/touchdown towards the
 hang-off, y vertical up with the seabed at y = 0 (the surface at y = water_depth),
 z out of plane (right-handed); arc length s from the bottom end. Angles are from the
 horizontal unless the name says otherwise.
 
-The key set is a contract documented in README.md; every value is checked for type,
-finiteness and a plausible range, and every error names the file and the key path.
+Every part checks its fields on construction (:mod:`riser.spec`); :class:`Scene` checks
+its own fields and the rules between parts (segments name existing line types, the ends
+fit the line and the water depth, the [model] fits the ends, the flow fits the bores), so
+``Scene(...)``, ``scene.replace(...)`` and the scene file give the same one-line
+:class:`~riser.errors.SceneError` naming the key path (``segments[2].length``) and the
+scene's ``source``.
 """
 
 from __future__ import annotations
@@ -17,248 +21,179 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
-import numpy as np
-
+from .dynamics import Dynamics, TopMotion
+from .ends import (
+    END_FORMS,
+    Ends,
+    FixedEnds,
+    HangOffAngleEnds,
+    TdpTensionEnds,
+    TopTensionEnds,
+)
+from .environment import Current, Seabed
 from .errors import SceneError
-from .internal_flow import InternalFlow
-from .settings import MAX_SEGMENT_LENGTH, AnalyticSettings, BVPSettings, VFIFESettings
+from .internal_flow import InternalFlow, check_internal_flow
+from .line import LineType, Segment
+from .scene_paths import replaced
+from .settings import AnalyticSettings, BVPSettings, VFIFESettings
+from .spec import Spec, check, check_fields, spec
 
-# Plausible ranges: wide enough for any real riser, narrow enough to catch unit slips
-# (mm instead of m, kN instead of N, GPa instead of Pa). One place for all of them.
-LIMITS = {
-    "gravity": (1.0, 30.0),               # m/s2
-    "water_density": (500.0, 2000.0),     # kg/m3
-    "water_depth": (1.0, 12000.0),        # m
-    "speed": 10.0,                        # |current| m/s
-    "diameter": 5.0,                      # m
-    "density": 25000.0,                   # kg/m3 (tungsten is 19300)
-    "mass_per_length": 1.0e4,             # kg/m
-    "youngs_modulus": (1.0e6, 1.0e13),    # Pa
-    "stiffness": 1.0e14,                  # N or N m2
-    "length": MAX_SEGMENT_LENGTH,         # m per segment
-    "line_load": 1.0e5,                   # N/m
-    "tension": 1.0e9,                     # N
-    "coordinate": 1.0e5,                  # m
-    "seabed_stiffness": 1.0e12,           # N/m2
+__all__ = [
+    "END_FORMS",
+    "MODEL_KEYS",
+    "Current",
+    "Dynamics",
+    "Ends",
+    "FixedEnds",
+    "HangOffAngleEnds",
+    "InternalFlow",
+    "LineType",
+    "Scene",
+    "Seabed",
+    "Segment",
+    "TdpTensionEnds",
+    "TopMotion",
+    "TopTensionEnds",
+    "require_axial_stiffness",
+]
+
+ENV = "environment"
+#: a hang-off above the surface by less than this fraction of the water depth is at the
+#: surface: a scene converted to fixed ends takes the BVP's top point, which meets a
+#: hang-off height at the surface to round-off (1 ulp above it for kang2015-jlay)
+SURFACE_ROUND_OFF = 1e-12
+
+#: the keys of [model]: the continuum model, when not the end form's default
+MODEL_KEYS = {
+    "axial": Spec(kind="string", choices=("extensible", "inextensible"), optional=True,
+                  default_doc="extensible (fixed ends), inextensible (other forms)",
+                  doc="strain T/EA, or the inextensible limit (the Wang model)"),
+    "seabed": Spec(kind="string", choices=("elastic", "rigid"), optional=True,
+                   default_doc="elastic (fixed ends with a [seabed]), rigid (other forms)",
+                   doc="Winkler foundation of [seabed] stiffness, or the rigid limit"),
 }
 
 
 @dataclass(frozen=True)
-class LineType:
-    """Cross-section and material of a line: a pipe, a cable, a chain, a jumper.
-
-    Attributes: outer_diameter [m], the displacement (buoyancy) diameter; inner_diameter
-    [m] (None when the section is given by its properties alone: only contents need it);
-    mass_per_length of the line in air, without contents [kg/m]; axial_stiffness EA [N]
-    (None when not given: only an inextensible model may omit it); bending_stiffness EI
-    [N m2]; torsional_stiffness GJ [N m2]; drag_normal, drag_tangential, added_mass [-];
-    contents_density [kg/m3]; hydro_diameter [m], the diameter of drag and added mass
-    (None: the outer diameter); submerged_weight [N/m, positive down], the empty line's
-    weight in water when given (replaces m g - rho_w g pi D^2 / 4); max_strain [-], the
-    axial strain T/EA beyond which a result carries a warning; compression: False for a
-    line that cannot carry effective compression (chain, rope, slack cable).
-    """
-
-    name: str
-    outer_diameter: float
-    inner_diameter: float | None
-    mass_per_length: float
-    axial_stiffness: float | None
-    bending_stiffness: float
-    torsional_stiffness: float
-    drag_normal: float = 1.0
-    drag_tangential: float = 0.0
-    added_mass: float = 1.0
-    contents_density: float = 0.0
-    hydro_diameter: float | None = None
-    submerged_weight: float | None = None
-    max_strain: float = 0.01
-    compression: bool = True
-
-
-@dataclass(frozen=True)
-class Segment:
-    """A length of one line type, ordered from the bottom end to the hang-off.
-
-    buoyancy: extra uplift of buoyancy modules [N/m]; submerged_weight: override of the
-    submerged weight [N/m, positive down]; weight_scale: factor on the submerged weight
-    (e.g. -1 for Wang et al.'s buoyancy section w_e = -w_r); hydro_diameter: diameter for
-    drag and added mass [m] (None = the line type's outer diameter).
-    """
-
-    line_type: str
-    length: float
-    buoyancy: float = 0.0
-    submerged_weight: float | None = None
-    weight_scale: float = 1.0
-    hydro_diameter: float | None = None
-    label: str = ""
-
-
-@dataclass(frozen=True)
-class Current:
-    """Current profile: speed [m/s] piecewise linear in height y [m], constant beyond.
-
-    Speeds are signed along ``heading_deg`` (0 = +x, in plane; 90 = +z, out of plane), so a
-    current that reverses with height is expressed with speeds of both signs.
-    """
-
-    heights: tuple[float, ...]
-    speeds: tuple[float, ...]
-    heading_deg: float = 0.0
-
-    @property
-    def is_planar(self) -> bool:
-        """True when the current lies in the x-y plane (heading 0 or 180 deg)."""
-        return abs(math.sin(math.radians(self.heading_deg))) < 1e-12
-
-    @property
-    def direction(self) -> np.ndarray:
-        """Unit vector of the heading in (x, y, z)."""
-        h = math.radians(self.heading_deg)
-        return np.array([math.cos(h), 0.0, math.sin(h)])
-
-    def speed(self, y: Any) -> np.ndarray:
-        """Signed speed [m/s] along the heading at height(s) y [m]."""
-        return np.interp(y, self.heights, self.speeds)
-
-    def speed_gradient(self, y: Any) -> np.ndarray:
-        """d(speed)/dy [1/s], piecewise constant, zero outside the given heights."""
-        h = np.asarray(self.heights)
-        v = np.asarray(self.speeds)
-        y = np.asarray(y, dtype=float)
-        if len(h) < 2:
-            return np.zeros_like(y)
-        slopes = np.diff(v) / np.diff(h)
-        idx = np.clip(np.searchsorted(h, y, side="right") - 1, 0, len(h) - 2)
-        out = slopes[idx]
-        return np.where((y < h[0]) | (y > h[-1]), 0.0, out)
-
-    @property
-    def max_abs_speed(self) -> float:
-        return max(abs(v) for v in self.speeds)
-
-
-@dataclass(frozen=True)
-class Seabed:
-    """Flat seabed at y = 0: penalty stiffness [N/m per m of line = N/m2], Coulomb friction,
-    damping as a fraction of critical for the contact spring (VFIFE only)."""
-
-    stiffness: float
-    friction: float = 0.0
-    damping: float = 0.0
-
-
-@dataclass(frozen=True)
-class Ends:
-    """Boundary conditions; ``kind`` is one of
-
-    - 'tdp_tension': touchdown at the origin with tension ``tdp_tension`` [N], top free;
-    - 'hang_off_angle': hang-off height [m] and angle from the horizontal [deg] given
-      (``hang_off_angle_deg``; the file may give it from the vertical, converted on
-      reading), the first segment's suspended length solved (its length in the file is
-      ``segments[0].length``);
-    - 'top_tension' (the J-lay form): touchdown at the origin on a rigid seabed (theta = 0,
-      M = 0 there); hang-off height [m] and effective tension ``top_tension`` [N] given,
-      M = 0 at the hang-off; the first segment's suspended length is solved (its length in
-      the file, ``segments[0].length``, is the pipe available: the suspended part plus
-      what lies on the seabed); the hang-off x, the angle and the TDP tension are outputs;
-    - 'fixed': anchor and hang-off positions (x, y) [m] given.
-
-    The forms other than 'fixed' are the Wang family: inextensible on a rigid seabed by
-    default (``Scene.axial_model``, ``Scene.seabed_model``).
-    """
-
-    kind: str
-    tdp_tension: float | None = None
-    hang_off_height: float | None = None
-    hang_off_angle_deg: float | None = None
-    anchor: tuple[float, float] | None = None
-    hang_off: tuple[float, float] | None = None
-    top_tension: float | None = None
-
-
-@dataclass(frozen=True)
-class TopMotion:
-    """Prescribed hang-off motion along ``axis`` ('x', 'y' or 'z'): harmonic (amplitude
-    [m], period [s]: d = A sin(2 pi t / T)) or a time series (times [s], displacements
-    [m], linearly interpolated). ``ramp_time`` [s]: the motion is multiplied by the
-    half-cosine ramp 0.5 (1 - cos(pi t / t_r)) up to t_r; None (the default) means one
-    period of a harmonic motion and no ramp for a time series (which starts where it says);
-    0 turns the ramp off (an impulsive start)."""
-
-    axis: str
-    amplitude: float = 0.0
-    period: float = 0.0
-    times: tuple[float, ...] | None = None
-    displacements: tuple[float, ...] | None = None
-    ramp_time: float | None = None
-
-    @property
-    def ramp(self) -> float:
-        """The ramp duration applied [s] (see the class docstring)."""
-        if self.ramp_time is not None:
-            return float(self.ramp_time)
-        return float(self.period) if self.times is None else 0.0
-
-
-@dataclass(frozen=True)
-class Dynamics:
-    """Dynamic run from the static state: duration and output interval [s].
-
-    damping : mass-proportional damping coefficient [1/s] (structural; the hydrodynamic
-        drag is always on in water, see vfife/dynamics.py).
-    statistics_start : [s] envelopes and statistics are taken from this time on; None
-        means the end of the top motion's ramp (0 without a ramp, or when the ramp is not
-        shorter than the run).
-    save_states : write every node's position and velocity at the output times
-        (``states.npz``).
-    """
-
-    duration: float
-    output_interval: float
-    top_motion: TopMotion | None = None
-    damping: float = 0.0
-    statistics_start: float | None = None
-    save_states: bool = False
-
-    @property
-    def statistics_from(self) -> float:
-        """The time [s] from which envelopes and statistics are taken."""
-        if self.statistics_start is not None:
-            return float(self.statistics_start)
-        ramp = self.top_motion.ramp if self.top_motion is not None else 0.0
-        return ramp if ramp < self.duration else 0.0
-
-
-@dataclass(frozen=True)
 class Scene:
-    """A validated riser scene. ``source`` is the file it came from (for messages)."""
+    """A validated riser scene. ``source`` is the file it came from (for messages);
+    ``provenance`` is the file's ``source`` key (where the data come from)."""
 
-    name: str
+    name: str = spec(kind="string", pattern=r"[a-z0-9][a-z0-9-]*",
+                     doc="the scene's name: lowercase letters, digits and dashes")
     line_types: dict[str, LineType]
     segments: tuple[Segment, ...]
-    ends: Ends
-    title: str = ""
-    provenance: str = ""
-    gravity: float = 9.81
-    water_density: float = 1025.0
-    water_depth: float | None = None
-    current: Current | None = None
-    seabed: Seabed | None = None
-    dynamics: Dynamics | None = None
-    internal_flow: InternalFlow | None = None
-    bvp: BVPSettings = field(default_factory=BVPSettings)
-    analytic: AnalyticSettings = field(default_factory=AnalyticSettings)
-    vfife: VFIFESettings = field(default_factory=VFIFESettings)
+    ends: Ends = spec(kind="part", part=Ends)
+    title: str = spec("", "string", doc="one line saying what the scene is")
+    provenance: str = spec("", "string", key="source",
+                           doc="where the data come from (a paper, its tables)")
+    gravity: float = spec(9.81, ge=1.0, le=30.0, unit="m/s2", table=ENV,
+                          doc="acceleration of gravity")
+    water_density: float = spec(1025.0, ge=500.0, le=2000.0, unit="kg/m3", table=ENV,
+                                doc="density of the sea water")
+    water_depth: float | None = spec(None, ge=1.0, le=12000.0, unit="m", table=ENV,
+                                     also=">= the hang-off height",
+                                     default_doc="none (no surface)",
+                                     doc="height of the surface above the seabed")
+    current: Current | None = spec(None, "part", part=Current, table=ENV)
+    seabed: Seabed | None = spec(None, "part", part=Seabed)
+    dynamics: Dynamics | None = spec(None, "part", part=Dynamics)
+    internal_flow: InternalFlow | None = spec(None, "part", part=InternalFlow)
+    bvp: BVPSettings = spec(kind="part", part=BVPSettings, default_factory=BVPSettings)
+    analytic: AnalyticSettings = spec(kind="part", part=AnalyticSettings,
+                                      default_factory=AnalyticSettings)
+    vfife: VFIFESettings = spec(kind="part", part=VFIFESettings,
+                                default_factory=VFIFESettings)
     model: dict = field(default_factory=dict)
     source: str = "<scene>"
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.source, str):
+            raise TypeError(f"Scene.source must be a string, got {self.source!r}")
+        check_fields(self, error=self.error)
+        for key, value in self.model.items():
+            if key not in MODEL_KEYS:
+                raise self.error(f"model.{key}", "unknown key (known keys here: "
+                                 f"{', '.join(MODEL_KEYS)})")
+            check(MODEL_KEYS[key], value, f"model.{key}", self.error)
+        self._check_line()
+        if self.internal_flow is not None:
+            check_internal_flow(self)
+        self._check_model()
+        self._check_geometry()
+
+    def error(self, key: str, message: str) -> SceneError:
+        """A SceneError of this scene's source naming ``key``."""
+        return SceneError(self.source, key, message)
+
+    def _check_line(self) -> None:
+        """Line types named by their keys; segments, each of a defined line type."""
+        if not isinstance(self.line_types, dict) or not self.line_types:
+            raise self.error("line_types", "at least one line type is required")
+        for key, lt in self.line_types.items():
+            if not isinstance(lt, LineType):
+                raise self.error(f"line_types.{key}", "must be a LineType, got "
+                                 f"{type(lt).__name__}")
+            if lt.name != key:
+                raise self.error(f"line_types.{key}", f"holds the line type named "
+                                 f"{lt.name!r}: a line type's name is its key")
+        if isinstance(self.segments, list):
+            object.__setattr__(self, "segments", tuple(self.segments))
+        if not isinstance(self.segments, tuple) or not self.segments:
+            raise self.error("segments", "must have at least one entry")
+        for i, seg in enumerate(self.segments):
+            if not isinstance(seg, Segment):
+                raise self.error(f"segments[{i}]", f"must be a Segment, got "
+                                 f"{type(seg).__name__}")
+            if seg.line_type not in self.line_types:
+                raise self.error(f"segments[{i}].line_type", f"unknown line type "
+                                 f"{seg.line_type!r} (defined: "
+                                 f"{', '.join(map(repr, self.line_types))})")
+
+    def _check_model(self) -> None:
+        """The [model] choices fit the end form, the seabed and the line types."""
+        wang = not isinstance(self.ends, FixedEnds)
+        if self.model.get("seabed") == "elastic" and wang:
+            raise self.error("model.seabed", "'elastic' needs fixed ends (anchor + hang_off); "
+                             f"the '{self.ends.kind}' form puts the touchdown on a rigid "
+                             "seabed (use 'rigid' or omit the key)")
+        if "seabed" in self.model and not wang and self.seabed is None:
+            raise self.error("model.seabed", "needs a [seabed] table (with its stiffness)")
+        if self.axial_model == "extensible":
+            why = "the default for fixed ends" if "axial" not in self.model else "[model] axial"
+            require_axial_stiffness(self, f"required for the extensible model ({why}): give "
+                                    "it [N] or youngs_modulus, or set [model] axial = "
+                                    "\"inextensible\"")
+
+    def _check_geometry(self) -> None:
+        """Physically impossible but well-formed scenes are refused before solving."""
+        e, depth, length = self.ends, self.water_depth, self.total_length
+        surface = None if depth is None else depth * (1.0 + SURFACE_ROUND_OFF)
+        if isinstance(e, FixedEnds):
+            chord = math.hypot(e.hang_off[0] - e.anchor[0], e.hang_off[1] - e.anchor[1])
+            # an extensible line no longer than the chord is taut (it stretches); only the
+            # inextensible model cannot reach
+            if self.axial_model == "inextensible" and length <= chord:
+                raise self.error("segments", f"line length {length:g} m is not longer than "
+                                 f"the distance {chord:g} m between anchor and hang_off: too "
+                                 "short for an inextensible line ([model] axial = "
+                                 "\"extensible\" lets it stretch)")
+            if depth is not None and e.hang_off[1] > surface:
+                raise self.error("ends.hang_off[1]", f"must be <= water_depth {depth:g} m "
+                                 f"(the model is fully submerged), got {e.hang_off[1]:g}")
+        if isinstance(e, (HangOffAngleEnds, TopTensionEnds)):
+            if depth is not None and e.hang_off_height > surface:
+                raise self.error("ends.hang_off_height", f"must be <= water_depth {depth:g} "
+                                 f"m, got {e.hang_off_height:g}")
+            if length <= e.hang_off_height:
+                raise self.error("segments", f"line length {length:g} m cannot reach the "
+                                 f"hang-off height {e.hang_off_height:g} m")
 
     @property
     def axial_model(self) -> str:
         """'extensible' (strain T/EA) or 'inextensible' (the Wang limit): the [model] axial
         key, else 'inextensible' for the Wang end forms and 'extensible' for fixed ends."""
-        return self.model.get("axial", "extensible" if self.ends.kind == "fixed"
+        return self.model.get("axial", "extensible" if isinstance(self.ends, FixedEnds)
                               else "inextensible")
 
     @property
@@ -266,7 +201,7 @@ class Scene:
         """'elastic' (unilateral Winkler foundation of [seabed] stiffness), 'rigid' (a
         touchdown point with theta = M = 0 on y = 0: the Wang limit), or None (fixed ends
         without a [seabed]). The Wang end forms are rigid by construction."""
-        if self.ends.kind != "fixed":
+        if not isinstance(self.ends, FixedEnds):
             return "rigid"
         if self.seabed is None:
             return None
@@ -292,9 +227,15 @@ class Scene:
             self.dynamics is None or self.dynamics.top_motion is None
             or self.dynamics.top_motion.axis != "z")
 
-    def replace(self, **changes: Any) -> "Scene":
-        """A copy with some fields changed (Scene is immutable)."""
-        return dataclasses.replace(self, **changes)
+    def replace(self, **changes: Any) -> Scene:
+        """A checked copy with some fields changed (Scene is immutable).
+
+        A key is a field (``gravity=9.8``, ``ends=FixedEnds(...)``) or a key path into a
+        part, as in the scene file (``**{"segments[2].length": 5.0}``, ``"ends.hang_off"``,
+        ``"environment.current.speeds"``, ``"line_types.steel.drag_normal"``,
+        ``"vfife.expert.static_damping"``): the part is rebuilt and a bad value is named
+        by its key path, exactly as the file would name it."""
+        return dataclasses.replace(self, **replaced(self, changes))
 
 
 def require_axial_stiffness(scene: Scene, message: str) -> None:

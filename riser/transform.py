@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 
-from .scene import Ends, Scene, Seabed, require_axial_stiffness
+from .scene import FixedEnds, Scene, Seabed, require_axial_stiffness
 
 #: Seabed stiffness [N/m2] (force per metre of line per metre of penetration) given to a
 #: touchdown-form scene without a [seabed] when it becomes a fixed-ends scene: a soft
@@ -18,8 +18,8 @@ DEFAULT_SEABED_STIFFNESS = 1.0e5
 def fixed_ends_scene(scene: Scene, hang_off_xy, seabed_length: float, *,
                      first_segment_length: float | None = None,
                      seabed_stiffness: float | None = None) -> Scene:
-    """Fixed-ends copy of a touchdown-form scene ('tdp_tension', 'hang_off_angle' or
-    'top_tension').
+    """Fixed-ends copy of a touchdown-form scene (:class:`~riser.ends.TdpTensionEnds`,
+    :class:`~riser.ends.HangOffAngleEnds` or :class:`~riser.ends.TopTensionEnds`).
 
     The hang-off is fixed at ``hang_off_xy`` = (x, y) [m] (e.g. the BVP's top point), the
     anchor is put on the seabed at (-seabed_length, 0), and the first (bottom) segment gets
@@ -45,6 +45,6 @@ def fixed_ends_scene(scene: Scene, hang_off_xy, seabed_length: float, *,
         seabed = Seabed(stiffness=float(seabed_stiffness), friction=0.0, damping=0.1)
     elif seabed_stiffness is not None:
         seabed = dataclasses.replace(seabed, stiffness=float(seabed_stiffness))
-    ends = Ends("fixed", anchor=(-float(seabed_length), 0.0),
-                hang_off=(float(hang_off_xy[0]), float(hang_off_xy[1])))
+    ends = FixedEnds(anchor=(-float(seabed_length), 0.0),
+                     hang_off=(float(hang_off_xy[0]), float(hang_off_xy[1])))
     return scene.replace(segments=tuple(segs), ends=ends, seabed=seabed, model={})

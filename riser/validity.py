@@ -33,7 +33,7 @@ import numpy as np
 
 from .errors import SceneError
 from .profile import Profile
-from .scene import Scene
+from .scene import Scene, TopTensionEnds
 
 #: the fewest elements a VFIFE line and each of its segments may have: fewer cannot carry
 #: the catenary shape (a 2,800 m SCR in 900 m elements put its touchdown at x = 0) nor a
@@ -180,7 +180,7 @@ def first_segment_warnings(scene: Scene, solved: float) -> tuple[str, list[str]]
     suspended part is longer), no warning."""
     given = scene.segments[0].length
     diff = solved - given
-    if scene.ends.kind == "top_tension":
+    if isinstance(scene.ends, TopTensionEnds):
         if solved > given:
             return (f"the solved suspended length of segments[0], {solved:.3f} m, exceeds its "
                     f"length in the file, {given:g} m, the pipe available (the suspended part "

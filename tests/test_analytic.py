@@ -20,7 +20,7 @@ import bvp
 from analytic.catenary import Catenary, bending_correction, vertex_length_for_height
 from analytic.layers import anchor_layer, touchdown_layer
 from riser.result import Status
-from riser.scene import Ends
+from riser.scene import FixedEnds, HangOffAngleEnds, TopTensionEnds
 from riser.sections import segment_properties
 from riser.settings import AnalyticSettings
 from verification.catalog import builtin_paths, resolve
@@ -149,9 +149,9 @@ def test_scr_fixed_ends_elastic_seabed_against_bvp():
     assert abs(sa["hang_off_angle_deg"] - sb["hang_off_angle_deg"]) < 1e-3
 
 
-@pytest.mark.parametrize("ends", [Ends("hang_off_angle", hang_off_height=1000.0,
-                                       hang_off_angle_deg=70.0),
-                                  Ends("fixed", anchor=(0.0, 100.0), hang_off=(800.0, 1000.0))],
+@pytest.mark.parametrize("ends", [HangOffAngleEnds(hang_off_height=1000.0,
+                                                   hang_off_angle_deg=70.0),
+                                  FixedEnds(anchor=(0.0, 100.0), hang_off=(800.0, 1000.0))],
                          ids=["hang_off_angle", "free_hanging"])
 def test_other_forms_against_bvp(ends):
     """The Wang angle form (rigid, inextensible) and a free-hanging line between pinned
@@ -160,7 +160,7 @@ def test_other_forms_against_bvp(ends):
     sc = resolve("scr-steel")
     seg = dataclasses.replace(sc.segments[0], length=1300.0)
     sc = sc.replace(ends=ends, seabed=None, model={},
-                    segments=(seg,) if ends.kind == "fixed" else sc.segments)
+                    segments=(seg,) if isinstance(ends, FixedEnds) else sc.segments)
     sb, sa, _ = _both(sc)
     assert sa["max_moment"] == pytest.approx(sb["max_moment"], rel=2e-4)
     assert sa["hang_off_tension"] == pytest.approx(sb["hang_off_tension"], rel=3e-4)
@@ -229,8 +229,8 @@ def test_jlay_tension_too_small_is_no_equilibrium(tmp_path):
     """A top tension below w Y (4.85 MN for Kang's pipe in 3000 m) cannot hold a line that
     reaches the seabed: status no_equilibrium, exit 1, one line saying so."""
     sc = resolve(KANG)
-    res = analytic.solve(sc.replace(ends=Ends("top_tension", top_tension=4.0e6,
-                                              hang_off_height=3000.0)))
+    res = analytic.solve(sc.replace(ends=TopTensionEnds(top_tension=4.0e6,
+                                                        hang_off_height=3000.0)))
     assert res.status is Status.NO_EQUILIBRIUM and res.message.startswith("no equilibrium")
     path = tmp_path / "low.toml"
     path.write_text(builtin_paths()[KANG].read_text().replace("5.681e6", "4.0e6"))

@@ -10,38 +10,18 @@ import pytest
 from scipy.optimize import brentq
 from scipy.special import ellipe, ellipk
 
+import builders
 import bvp
 from riser.errors import UnsupportedSceneError
 from riser.result import Status
-from riser.io.scene_file import parse_scene
-from riser.scene import Current, Ends, Seabed
+from riser.scene import Current, FixedEnds, HangOffAngleEnds, Seabed
 from verification.catalog import resolve
-
-ROD = """
-name = "{name}"
-[environment]
-gravity = 9.81
-water_density = 1025.0
-[line_types.rod]
-outer_diameter = 0.01
-inner_diameter = 0.0
-mass_per_length = {mass}
-axial_stiffness = 1.0e9
-bending_stiffness = {EI}
-[[segments]]
-line_type = "rod"
-length = {L}
-[ends]
-{ends}
-[model]
-axial = "{axial}"
-"""
 
 
 def rod(name="rod", mass=1.0, EI=1.0, L=1000.0, ends="tdp_tension = 1.0e4", axial="inextensible"):
     """A 1 cm rod; inextensible by default, the model of the closed forms below."""
-    return parse_scene(ROD.format(name=name, mass=mass, EI=EI, L=L, ends=ends, axial=axial),
-                       "rod.toml")
+    return builders.rod(name=name, mass=mass, EI=EI, L=L, ends=ends,
+                        extra=f'[model]\naxial = "{axial}"')
 
 
 def submerged_weight(mass):
@@ -150,9 +130,8 @@ def test_inverse_recovers_forward(baseline):
     # form (b) at the forward solution's hang-off recovers S_L and T_TDP (issue: 0.1 %;
     # the same equations, so far tighter in practice)
     sm = baseline.summary()
-    sc = resolve("wang2014-baseline").replace(ends=Ends(
-        "hang_off_angle", hang_off_height=sm["hang_off_height"],
-        hang_off_angle_deg=sm["hang_off_angle_deg"]))
+    sc = resolve("wang2014-baseline").replace(ends=HangOffAngleEnds(
+        hang_off_height=sm["hang_off_height"], hang_off_angle_deg=sm["hang_off_angle_deg"]))
     inv = bvp.solve(sc)
     assert inv.converged, inv.message
     assert inv.info["first_segment_suspended_length"] == pytest.approx(390.0, rel=1e-4)
@@ -168,8 +147,8 @@ def test_fixed_ends_with_seabed_matches_touchdown_form(baseline):
     segs[0] = dataclasses.replace(segs[0], length=690.0)
     # the rigid, inextensible limit of form (c): the paper model with the anchor given
     fx = sc.replace(segments=tuple(segs), seabed=Seabed(1e5),
-                    ends=Ends("fixed", anchor=(-300.0, 0.0),
-                              hang_off=(sm["hang_off_x"], sm["hang_off_height"])),
+                    ends=FixedEnds(anchor=(-300.0, 0.0),
+                                   hang_off=(sm["hang_off_x"], sm["hang_off_height"])),
                     model={"axial": "inextensible", "seabed": "rigid"})
     res = bvp.solve(fx)
     assert res.converged, res.message
@@ -221,8 +200,8 @@ def test_out_of_plane_current_is_refused():
 def test_failure_is_reported_not_returned():
     # a hang-off angle no catenary with a touchdown can reach: converged False, a reason,
     # and no profile (never a silently wrong one)
-    sc = resolve("wang2014-baseline").replace(ends=Ends(
-        "hang_off_angle", hang_off_height=2500.0, hang_off_angle_deg=5.0))
+    sc = resolve("wang2014-baseline").replace(ends=HangOffAngleEnds(
+        hang_off_height=2500.0, hang_off_angle_deg=5.0))
     res = bvp.solve(sc)
     assert not res.converged
     assert res.profile is None

@@ -50,7 +50,7 @@ import pytest
 
 from bvp.equations import ITH, IY, NSTATE
 from bvp.solver import _build_problem
-from riser.scene import Ends, Seabed
+from riser.scene import FixedEnds, HangOffAngleEnds, Seabed
 from verification.catalog import resolve
 
 REL_STEP = 1.0e-6      # relative difference step per component (see the module docstring)
@@ -63,8 +63,8 @@ NODES = 24
 def _wang_hang_off_angle(name):
     # the inverse form (b) of test_bvp: hang-off height and angle given, the suspended
     # length of the first segment the unknown p
-    return resolve(name).replace(ends=Ends("hang_off_angle", hang_off_height=1586.3,
-                                           hang_off_angle_deg=78.88))
+    return resolve(name).replace(ends=HangOffAngleEnds(hang_off_height=1586.3,
+                                                       hang_off_angle_deg=78.88))
 
 
 def _wang_rigid_seabed():
@@ -74,7 +74,7 @@ def _wang_rigid_seabed():
     segs = list(sc.segments)
     segs[0] = dataclasses.replace(segs[0], length=690.0)
     return sc.replace(segments=tuple(segs), seabed=Seabed(1e5),
-                      ends=Ends("fixed", anchor=(-300.0, 0.0), hang_off=(1625.0, 1586.3)),
+                      ends=FixedEnds(anchor=(-300.0, 0.0), hang_off=(1625.0, 1586.3)),
                       model={"axial": "inextensible", "seabed": "rigid"})
 
 

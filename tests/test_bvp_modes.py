@@ -23,9 +23,9 @@ import math
 import numpy as np
 import pytest
 
+import builders
 import bvp
 from bvp.modes import solve_modes
-from riser.io.scene_file import scene_from_dict
 from riser.modes import PLANES
 from verification.catalog import resolve
 
@@ -35,15 +35,10 @@ RTOL = 1e-6          # see the module docstring
 def straight_line(length, span, *, EA=1e8, EI=1.0, mass=10.0, D=0.2, Ca=0.0, vfife=None):
     """A weightless (submerged weight 0) line stretched horizontally between fixed ends
     at height 10 m, no seabed."""
-    d = {"name": "t", "environment": {"gravity": 9.81, "water_density": 1025.0},
-         "line_types": {"p": {"outer_diameter": D, "mass_per_length": mass,
-                              "axial_stiffness": EA, "bending_stiffness": EI,
-                              "added_mass": Ca, "max_strain": 0.1}},
-         "segments": [{"line_type": "p", "length": length, "submerged_weight": 0.0}],
-         "ends": {"anchor": [0.0, 10.0], "hang_off": [span, 10.0]}}
-    if vfife:
-        d["vfife"] = vfife
-    return scene_from_dict(d, "test")
+    lt = {"outer_diameter": D, "mass_per_length": mass, "axial_stiffness": EA,
+          "bending_stiffness": EI, "added_mass": Ca, "max_strain": 0.1}
+    return builders.scene(builders.straight(length, span, height=10.0, line_type=lt,
+                                            vfife=vfife or None))
 
 
 def beam_frequencies(n, L0, T, EA, EI, m_n):
@@ -58,9 +53,9 @@ def frequencies(res, plane):
 
 
 def test_taut_string():
-    """f_n = n/(2L) sqrt(T/m) with L and m of the stretched string (REFERENCE.md 5):
-    strain 1e-3 of EA = 1e8 N gives T = 1e5 N; EI = 1 N m2 raises f by (n pi/L)^2 EI/(2T)
-    < 2e-7 for n <= 6, inside RTOL. Both families are the same string."""
+    """f_n = n/(2L) sqrt(T/m) with L and m of the stretched string (docs/references.md,
+    Modal analysis): strain 1e-3 of EA = 1e8 N gives T = 1e5 N; EI = 1 N m2 raises f by
+    (n pi/L)^2 EI/(2T) < 2e-7 for n <= 6, inside RTOL. Both families are the same string."""
     L0, span, EA, m = 100.0 / 1.001, 100.0, 1e8, 10.0
     res = solve_modes(straight_line(L0, span, EA=EA, mass=m), 6)
     assert res.converged, res.message
@@ -79,9 +74,10 @@ def test_taut_string():
 
 
 def test_pinned_beam():
-    """omega_n = (n pi / L)^2 sqrt(EI/m) (REFERENCE.md 5): ends at the unstretched length,
-    so T = 0 (the BVP gives |T| ~ 1e-9 N, a relative effect T L^2/EI ~ 1e-9); EA = 1e9 N
-    puts the first axial mode (158 Hz) far above the tenth bending mode (0.5 Hz)."""
+    """omega_n = (n pi / L)^2 sqrt(EI/m) (docs/references.md, Modal analysis): ends at the
+    unstretched length, so T = 0 (the BVP gives |T| ~ 1e-9 N, a relative effect T L^2/EI ~
+    1e-9); EA = 1e9 N puts the first axial mode (158 Hz) far above the tenth bending mode
+    (0.5 Hz)."""
     L, EI, m = 100.0, 1e4, 10.0
     res = solve_modes(straight_line(L, L, EA=1e9, EI=EI), 6)
     assert res.converged, res.message
@@ -147,12 +143,10 @@ def test_shallow_sag_cable_irvine():
     largest difference is 0.7 % (2.3x larger at d/l = 0.049, as (d/l)^2): 1.5 %."""
     from scipy.optimize import brentq
     l, w, m, EA = 100.0, 100.0, 10.0, 5e7
-    d = {"name": "t", "environment": {"gravity": 9.81, "water_density": 1025.0},
-         "line_types": {"p": {"outer_diameter": 0.1, "mass_per_length": m, "added_mass": 0.0,
-                              "axial_stiffness": EA, "bending_stiffness": 10.0}},
-         "segments": [{"line_type": "p", "length": 100.3, "submerged_weight": w}],
-         "ends": {"anchor": [0.0, 50.0], "hang_off": [l, 50.0]}}
-    sc = scene_from_dict(d, "test")
+    lt = {"outer_diameter": 0.1, "mass_per_length": m, "added_mass": 0.0,
+          "axial_stiffness": EA, "bending_stiffness": 10.0}
+    sc = builders.scene(builders.line(100.3, (0.0, 50.0), (l, 50.0), line_type=lt,
+                                      submerged_weight=w))
     static = bvp.solve(sc)
     assert static.converged, static.message
     p = static.profile
@@ -204,12 +198,12 @@ def test_refusals():
     res = solve_modes(resolve("wang2014-baseline"))
     assert res.status.value == "refused" and "fixed ends" in res.message and not res.modes
     sc = straight_line(100.0 / 1.001, 100.0)
-    cur = scene_from_dict({"name": "t", "environment": {"current": {
-        "heights": [0.0, 20.0], "speeds": [1.0, 1.0], "heading_deg": 90.0}},
-        "line_types": {"p": {"outer_diameter": 0.2, "mass_per_length": 10.0,
-                             "axial_stiffness": 1e8, "bending_stiffness": 1.0}},
-        "segments": [{"line_type": "p", "length": 99.9}],
-        "ends": {"anchor": [0.0, 10.0], "hang_off": [100.0, 10.0]}}, "test")
+    cur = builders.scene(builders.line(
+        99.9, (0.0, 10.0), (100.0, 10.0),
+        line_type={"outer_diameter": 0.2, "mass_per_length": 10.0, "axial_stiffness": 1e8,
+                   "bending_stiffness": 1.0},
+        environment={"current": {"heights": [0.0, 20.0], "speeds": [1.0, 1.0],
+                                 "heading_deg": 90.0}}))
     res = solve_modes(cur)
     assert res.status.value == "refused" and "not planar" in res.message
     with pytest.raises(ValueError):

@@ -74,7 +74,7 @@ def _line(n: int = 2001, dx: float = 0.0) -> Profile:
 
 
 def test_rel_diff_has_the_basis_of_the_tolerance():
-    # each row's signed relative difference uses the basis of its tolerance (README,
+    # each row's signed relative difference uses the basis of its tolerance (docs/comparison.md,
     # tolerances.py): the hang-off tension relative to itself (1800 N, not T_max = 2000 N),
     # the moment rows to M_max, heights to the depth, touchdown tension to T_max
     p = _line()

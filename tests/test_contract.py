@@ -157,7 +157,7 @@ def test_expert_table_is_read_and_validated():
 
 @pytest.mark.parametrize("change,message", [
     ({"element_length": 5000.0}, "vfife.element_length: must be <= 1000 m"),
-    ({"static_damping": 0.0}, "vfife.static_damping: must be > 0"),
+    ({"static_damping": 0.0}, "vfife.expert.static_damping: must be > 0"),   # as the file
     ({"max_steps": 2.5}, "vfife.max_steps: must be an integer"),
     ({"clamped_ends": ("middle",)}, "vfife.clamped_ends[0]: must be one of"),
     ({"dampin": 1.0}, "vfife.dampin: unknown setting"),

@@ -28,9 +28,10 @@ import math
 
 import pytest
 
+import builders
 import bvp
 import vfife
-from riser.io.scene_file import scene_from_dict
+from riser.scene import FixedEnds, TdpTensionEnds
 from verification.quantities import raw_values
 from verification.studies import cost
 from verification.studies.cost import assessment, fits, records, settings
@@ -46,25 +47,18 @@ TOUCHDOWN_LENGTHS = (8.0, 4.0, 2.0, 1.0)
 
 
 def hanging_line():
-    d = {"name": "hanging-line", "environment": {"gravity": 9.81, "water_density": 1025.0},
-         "line_types": {"p": {"outer_diameter": 0.3, "inner_diameter": 0.25,
-                              "mass_per_length": 100.0, "axial_stiffness": 1e9,
-                              "bending_stiffness": 1e7, "drag_normal": 1.0,
-                              "drag_tangential": 0.0, "added_mass": 1.0}},
-         "segments": [{"line_type": "p", "length": 240.0, "submerged_weight": 500.0}],
-         "ends": {"anchor": [0.0, 100.0], "hang_off": [200.0, 100.0]}}
-    return scene_from_dict(d, "test")
+    """240 m of :func:`builders.pipe` (500 N/m) hanging between ends 200 m apart at 100 m."""
+    return builders.scene(builders.line(
+        240.0, (0.0, 100.0), (200.0, 100.0), name="hanging-line", submerged_weight=500.0,
+        line_type=builders.pipe(drag_normal=1.0, drag_tangential=0.0, added_mass=1.0)))
 
 
 def touchdown_line():
-    d = {"name": "touchdown-line", "environment": {"gravity": 9.81, "water_density": 1025.0},
-         "seabed": {"stiffness": 1.0e3},
-         "line_types": {"p": {"outer_diameter": 0.3, "inner_diameter": 0.25,
-                              "mass_per_length": 100.0, "axial_stiffness": 1e9,
-                              "bending_stiffness": 1e7}},
-         "segments": [{"line_type": "p", "length": 300.0, "submerged_weight": 500.0}],
-         "ends": {"anchor": [0.0, 0.0], "hang_off": [220.0, 120.0]}}
-    return scene_from_dict(d, "test")
+    """300 m of :func:`builders.pipe` (500 N/m) from an anchor on a soft seabed to a
+    hang-off at (220, 120) m."""
+    return builders.scene(builders.line(
+        300.0, (0.0, 0.0), (220.0, 120.0), name="touchdown-line", submerged_weight=500.0,
+        seabed={"stiffness": 1.0e3}))
 
 
 @pytest.fixture(scope="module")
@@ -193,7 +187,8 @@ def test_wang_form_scene_is_converted_for_both_methods():
     sets = [S("bvp", "tolerance", 1e-4, {"tolerance": 1e-4}),
             S("vfife", "element_length", 10.0, {"element_length": 10.0})]
     st = cost.study(resolve("wang2014-baseline"), repeats=1, settings=sets, progress=False)
-    assert st.scene.ends.kind == "tdp_tension" and st.fixed_scene.ends.kind == "fixed"
+    assert isinstance(st.scene.ends, TdpTensionEnds)
+    assert isinstance(st.fixed_scene.ends, FixedEnds)
     assert st.fixed_scene.seabed_model == "elastic" and st.fixed_scene.axial_model == \
         "extensible"
     assert st.reference.profile.s[0] == 0.0                       # from the anchor

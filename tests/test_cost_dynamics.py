@@ -14,8 +14,8 @@ import math
 import pandas as pd
 import pytest
 
+import builders
 import vfife
-from riser.io.scene_file import scene_from_dict
 from verification.studies import cost
 from verification.studies.cost import dynamics as dyn
 from verification.studies.cost import dynamics_analysis as da
@@ -150,15 +150,10 @@ def test_dynamics_csv_has_its_columns(tmp_path):
 def hanging_surface_line():
     """A 240 m line hanging between two points 100 m and 150 m up, the top at the sea
     surface (water depth 150 m): the heave lifts its top out of the water."""
-    d = {"name": "surface-line", "environment": {"gravity": 9.81, "water_density": 1025.0,
-                                                 "water_depth": 150.0},
-         "line_types": {"p": {"outer_diameter": 0.3, "inner_diameter": 0.25,
-                              "mass_per_length": 100.0, "axial_stiffness": 1e9,
-                              "bending_stiffness": 1e7, "drag_normal": 1.0,
-                              "drag_tangential": 0.01, "added_mass": 1.0}},
-         "segments": [{"line_type": "p", "length": 240.0}],
-         "ends": {"anchor": [0.0, 100.0], "hang_off": [200.0, 150.0]}}
-    return scene_from_dict(d, "test")
+    return builders.scene(builders.line(
+        240.0, (0.0, 100.0), (200.0, 150.0), name="surface-line",
+        line_type=builders.pipe(drag_normal=1.0, drag_tangential=0.01, added_mass=1.0),
+        environment={"water_depth": 150.0}))
 
 
 def test_sweep_plan_fast_and_full():
@@ -244,8 +239,9 @@ def test_a_node_in_air_loses_its_added_mass_and_part_of_its_stable_step():
     assert static.converged, static.message
     mesh = build_mesh(sc, 2.0)
     m, ma = mesh.lump(mesh.mass_pl)[-2], mesh.lump(mesh.added_pl)[-2]
-    heave = Dynamics(duration=0.05, output_interval=0.05,
-                     top_motion=TopMotion(axis="y", amplitude=1.5, period=10.0))
+    heave = Dynamics(duration=0.05, output_interval=0.05,      # the ramp within the run
+                     top_motion=TopMotion(axis="y", amplitude=1.5, period=10.0,
+                                          ramp_time=0.05))
     bending = {}
     for depth in (150.0, 1000.0):          # the top at the surface / 850 m below it
         s = sc.replace(water_depth=depth, dynamics=heave)

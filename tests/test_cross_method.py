@@ -14,6 +14,7 @@ import dataclasses
 import pandas as pd
 import pytest
 
+from riser.scene import FixedEnds
 from riser.settings import VFIFESettings
 from riser.transform import DEFAULT_SEABED_STIFFNESS
 from verification.catalog import resolve
@@ -40,7 +41,7 @@ def test_wang_form_is_compared_like_with_like(wang):
     # a Wang form: the BVP solves the paper model once, the scene is converted once, and
     # BOTH methods solve the converted scene, extensible on the soft-clay seabed
     ms = wang.matched_scene
-    assert ms.ends.kind == "fixed" and wang.vfife_scene is ms
+    assert isinstance(ms.ends, FixedEnds) and wang.vfife_scene is ms
     assert wang.bvp.model == {"axial": "extensible", "seabed": "elastic",
                                       "seabed_stiffness": DEFAULT_SEABED_STIFFNESS}
     assert wang.paper.model == {"axial": "inextensible", "seabed": "rigid"}
@@ -186,7 +187,8 @@ def test_negative_control_drag_halved():
 
 
 # ------------------------------------------------------------------ every supported scene
-# Hard scenes left out, each for a stated reason (README / the closing note of issue 11):
+# Hard scenes left out, each for a stated reason (verification/comparison/tolerances.py /
+# the closing note of issue 11):
 # hard-flexible: EI = 1e3 N m2, bending length sqrt(EI/T) ~ 0.04-0.07 m, far below any
 #   practical VFIFE element: its moment is unresolved at 1 m (21 % of a 3.3 N m M_max);
 # hard-buoyancy-loss, hard-current-neg2p5: the BVP does not converge (stated failure);

@@ -8,8 +8,8 @@ import json
 import numpy as np
 import pytest
 
+import builders
 import vfife
-from riser.io.scene_file import scene_from_dict
 from verification.catalog import builtin_paths
 
 RHO, G = 1025.0, 9.81
@@ -18,18 +18,16 @@ RHO, G = 1025.0, 9.81
 def vertical_line(water_depth, motion, *, h=0.2, drag=1.0, damping=0.5, duration=60.0):
     """A 100 m vertical line (D 0.3 m, 100 kg/m, EA 1e8 N) from an anchor at the seabed to
     a hang-off at (1, 100) m (x must grow: 0.6 deg from the vertical), moved by ``motion`` (a top_motion table)."""
-    d = {"name": "vertical", "environment": {"gravity": G, "water_density": RHO},
-         "line_types": {"p": {"outer_diameter": 0.3, "mass_per_length": 100.0,
-                              "axial_stiffness": 1e8, "bending_stiffness": 1e3,
-                              "drag_normal": drag, "drag_tangential": 0.0, "added_mass": 1.0}},
-         "segments": [{"line_type": "p", "length": 100.0}],
-         "ends": {"anchor": [0.0, 0.0], "hang_off": [1.0, 100.0]},
-         "vfife": {"element_length": h},
-         "dynamics": {"duration": duration, "output_interval": 0.5, "damping": damping,
-                      "top_motion": motion}}
+    env = {"gravity": G, "water_density": RHO}
     if water_depth is not None:
-        d["environment"]["water_depth"] = water_depth
-    return scene_from_dict(d, "test")
+        env["water_depth"] = water_depth
+    return builders.scene(builders.line(
+        100.0, (0.0, 0.0), (1.0, 100.0), name="vertical", environment=env,
+        line_type=builders.pipe(inner_diameter=None, axial_stiffness=1e8, bending_stiffness=1e3,
+                                drag_normal=drag, drag_tangential=0.0, added_mass=1.0),
+        vfife={"element_length": h},
+        dynamics={"duration": duration, "output_interval": 0.5, "damping": damping,
+                  "top_motion": motion}))
 
 
 LIFT = {"axis": "y", "times": [0.0, 20.0, 60.0], "displacements": [0.0, 5.0, 5.0]}

@@ -174,24 +174,35 @@ def test_a_solve_writes_only_its_listed_files(tmp_path, run_cli):
     assert written <= set(outdir.SOLVE)
 
 
+def _files(folder: Path) -> set[str]:
+    return {str(p.relative_to(folder)) for p in folder.rglob("*") if p.is_file()}
+
+
 def test_the_lists_cover_every_committed_report():
-    # reports/ holds what each command and study last wrote: every file must be listed
+    # reports/ holds what each command and study last wrote: every file must be listed,
+    # and every study's folder is there (one subfolder per unit for compare, cost and
+    # modes: exactly the study's units), each with its report.md, and bench/ with the
+    # throughput, method and peer files (an empty or missing reports/ fails here)
+    from verification.studies import study
     rep = ROOT / "reports"
     lists = {"wang2014": outdir.STUDY_FILES["wang2014"], "yu2021": outdir.STUDY_FILES["yu2021"],
              "liu2021": outdir.STUDY_FILES["liu2021"], "kang2015": outdir.STUDY_FILES["kang2015"],
-             "stress": outdir.STRESS,
-             "bench": outdir.BENCH + outdir.BENCH_SWEEP
-             + tuple(peers.peer(n).bench_file for n in peers.names())}
+             "stress": outdir.STRESS}
     for name, names in lists.items():
-        for p in (rep / name).rglob("*"):
-            if p.is_file():
-                assert str(p.relative_to(rep / name)) in names, p
+        files = _files(rep / name)
+        assert "report.md" in files, name
+        assert files <= set(names), (name, files - set(names))
+    bench = outdir.BENCH + outdir.BENCH_SWEEP + tuple(peers.peer(n).bench_file
+                                                      for n in peers.names())
+    assert _files(rep / "bench") == set(bench)
     for name, names in (("compare", outdir.COMPARE), ("cost", outdir.COST),
                         ("modes", outdir.MODES)):
-        for unit in (rep / name).iterdir():
-            for p in unit.rglob("*"):
-                if p.is_file():
-                    assert str(p.relative_to(unit)) in names, p
+        units = sorted(p.name for p in (rep / name).iterdir())
+        assert units == sorted(study(name).units), name
+        for unit in units:
+            files = _files(rep / name / unit)
+            assert "report.md" in files, (name, unit)
+            assert files <= set(names), (name, unit, files - set(names))
 
 
 def test_clear_removes_only_own_files_and_empty_own_subfolders(tmp_path):

@@ -19,7 +19,7 @@ from scipy.optimize import fsolve
 import bvp
 from riser.io.scene_file import parse_scene
 from riser.result import Status
-from riser.scene import Ends
+from riser.scene import HangOffAngleEnds
 from verification.catalog import builtin_paths, resolve
 from verification.pipeline import solve_scene
 
@@ -127,9 +127,8 @@ def test_the_hang_off_angle_form_gives_back_the_top_tension(jlay):
     # the same equations and solution, so the top tension and suspended length agree to
     # the collocation tolerance (1e-6; measured 2e-16)
     sm = jlay.summary()
-    scene = resolve("kang2015-jlay").replace(ends=Ends(
-        "hang_off_angle", hang_off_height=sm["hang_off_height"],
-        hang_off_angle_deg=sm["hang_off_angle_deg"]))
+    scene = resolve("kang2015-jlay").replace(ends=HangOffAngleEnds(
+        hang_off_height=sm["hang_off_height"], hang_off_angle_deg=sm["hang_off_angle_deg"]))
     res = bvp.solve(scene)
     assert res.converged, res.message
     sb = res.summary()

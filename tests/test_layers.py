@@ -141,6 +141,15 @@ def test_packages_import_only_lower_layers():
     assert not bad, bad
 
 
+def test_the_riser_model_never_imports_its_file_formats():
+    # riser/io reads and writes the model; a model module never imports a format (the
+    # package riser/__init__.py, the facade, re-exports the reader)
+    bad = [f"{a} imports {b}" for a, deps in graph().items()
+           if a.startswith("riser.") and not a.startswith("riser.io")
+           for b in deps if b == "riser.io" or b.startswith("riser.io.")]
+    assert not bad, bad
+
+
 def test_nothing_imports_the_cli():
     bad = [a for a, deps in graph().items()
            if not a.startswith("verification.cli")

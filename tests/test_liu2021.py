@@ -128,7 +128,8 @@ def test_table_csv_contract(coarse):
                        rtol=1e-6, atol=1e-7)
     assert df.rel_err[~both].isna().all()
     paper = dict(zip(df.quantity, df.paper))
-    # REFERENCE.md section 3: 3.78 kN = 0.27 %; 101.06 / 127.53 kN m, 36 %; U 2.5 m/s
+    # docs/references.md, Liu et al. 2021: 3.78 kN = 0.27 %; 101.06 / 127.53 kN m, 36 %;
+    # U 2.5 m/s
     assert paper["top_tension_amplitude_slug_minus_uniform_N"] == 3780.0
     assert paper["static_top_effective_tension_uniform_N"] == pytest.approx(1.4e6)
     assert paper["mean_moment_140m_LsD100_N_m"] == 101060.0

@@ -24,47 +24,26 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq, fsolve
 
+import builders
 import bvp
 import vfife
 from riser.errors import SceneError
-from riser.io.scene_file import parse_scene
 from riser.scene import Seabed
 from verification.cli import main as cli_main
 from verification.pipeline import vfife_equivalent
 
-RHO, G, D = 1025.0, 9.81, 0.01          # water density, gravity, rod diameter of ROD
-
-ROD = """
-name = "{name}"
-[environment]
-gravity = 9.81
-water_density = 1025.0
-{seabed}
-[line_types.rod]
-outer_diameter = 0.01
-inner_diameter = 0.0
-mass_per_length = {mass}
-axial_stiffness = {EA}
-bending_stiffness = {EI}
-[[segments]]
-line_type = "rod"
-length = {L}
-[ends]
-anchor = [{ax}, {ay}]
-hang_off = [{hx}, {hy}]
-{model}
-"""
+RHO, G, D = 1025.0, 9.81, 0.01          # water density, gravity, rod diameter of rod()
 
 
 def rod(*, mass, EA, EI, L, anchor, hang_off, k=None, model=""):
-    seabed = f"[seabed]\nstiffness = {k!r}" if k is not None else ""
-    text = ROD.format(name="rod", seabed=seabed, mass=mass, EA=EA, EI=EI, L=L,
-                      ax=anchor[0], ay=anchor[1], hx=hang_off[0], hy=hang_off[1], model=model)
-    return parse_scene(text, "rod.toml")
+    """The 1 cm rod (:func:`builders.rod_toml`) between fixed ends, on a seabed of stiffness
+    ``k`` (None: none); ``model``: a [model] table."""
+    ends = f"anchor = [{anchor[0]}, {anchor[1]}]\nhang_off = [{hang_off[0]}, {hang_off[1]}]"
+    return builders.rod(mass=mass, EA=EA, EI=EI, L=L, ends=ends, seabed=k, extra=model)
 
 
 def submerged_weight(mass):
-    """w = (m - rho pi D^2 / 4) g of the 1 cm rod of ROD [N/m]."""
+    """w = (m - rho pi D^2 / 4) g of the 1 cm rod of rod() [N/m]."""
     return (mass - RHO * math.pi / 4 * D * D) * G
 
 

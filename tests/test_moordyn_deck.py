@@ -20,6 +20,7 @@ from riser.io.moordyn.deck import DeckError, parse_deck, read_deck
 from riser.io.moordyn.deck_from_scene import export_scene
 from riser.io.moordyn.scene_from_deck import import_deck
 from riser.io.scene_file import parse_scene
+from riser.scene import FixedEnds
 from riser.sections import segment_properties
 from verification.catalog import builtin_paths, resolve
 from verification.cli import main
@@ -40,7 +41,7 @@ def assert_same_physics(a, b):
     assert b.gravity == a.gravity and b.water_density == a.water_density
     if a.water_depth is not None:
         assert b.water_depth == pytest.approx(a.water_depth, rel=RTOL)
-    assert b.ends.kind == a.ends.kind == "fixed"
+    assert isinstance(a.ends, FixedEnds) and isinstance(b.ends, FixedEnds)
     # the deck is placed with the anchor at x = 0: compare relative positions
     ax, bx = a.ends.hang_off[0] - a.ends.anchor[0], b.ends.hang_off[0] - b.ends.anchor[0]
     assert bx == pytest.approx(ax, rel=RTOL, abs=1e-9)
@@ -78,7 +79,7 @@ def test_round_trip_of_built_in_scenes(name, tmp_path):
     assert_same_physics(files.scene, back)
     assert parse_scene(text).name == back.name           # the written file reads back
     # a touchdown-form scene is exported as its fixed-ends conversion, with the note
-    if resolve(name).ends.kind != "fixed":
+    if not isinstance(resolve(name).ends, FixedEnds):
         assert "Converted from the 'tdp_tension' form" in files.export.text
         assert files.s_shift > 0
 

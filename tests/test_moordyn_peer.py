@@ -3,7 +3,7 @@
 Needs the optional package ``moordyn`` (``pip install -e '.[moordyn]'``; CI installs it);
 every test but the first is skipped with that reason without it. The scene is the
 built-in steel catenary riser at 20 m MoorDyn segments (100 segments: seconds a run; a
-short stiff line converges far more slowly in MoorDyn's static solver, see the README). The reference is the BVP on the same scene; the tolerances are MoorDyn's own
+short stiff line converges far more slowly in MoorDyn's static solver, see docs/moordyn.md). The reference is the BVP on the same scene; the tolerances are MoorDyn's own
 (verification/peers/moordyn/column.py) or tighter where the test says why.
 """
 

@@ -173,9 +173,10 @@ def test_dynamics_reports_increasing_fractions_ending_at_one():
     from riser.io.scene_file import load_scene
     from riser.scene import Dynamics, TopMotion
     base = load_scene(LONG_DYNAMIC)
+    # the ramp within the run (the default, one period, would be longer than it)
     sc = base.replace(dynamics=Dynamics(duration=5.0, output_interval=1.0,
                                         top_motion=TopMotion(axis="y", amplitude=1.0,
-                                                             period=10.0)))
+                                                             period=10.0, ramp_time=5.0)))
     calls = []
     res = vfife.solve(sc, element_length=20.0,
                       progress=lambda m, fraction=None: calls.append((m, fraction)))

@@ -15,6 +15,7 @@ import pytest
 
 from riser.errors import SceneError
 from riser.io.scene_file import load_scene, parse_scene
+from riser.scene import FixedEnds
 from riser.sections import segment_properties
 from verification.catalog import builtin_paths
 
@@ -297,7 +298,7 @@ CASES = [
     ("angle-both-references", W, "tdp_tension = 160000.0", "hang_off_height = 1500.0\n"
      "hang_off_angle_from_vertical_deg = 12.0\nhang_off_angle_from_horizontal_deg = 78.0",
      "ends.hang_off_angle_from_horizontal_deg", ["exactly one", "both given"]),
-    # [model]: the continuum model (README "One model, two methods")
+    # [model]: the continuum model (docs/theory.md, "One model, two methods")
     ("model-axial-unknown", F, "[bvp]", "[model]\naxial = \"stretchy\"\n[bvp]", "model.axial",
      ["must be one of 'extensible', 'inextensible'"]),
     ("model-elastic-seabed-wang-form", W, "tdp_tension = 160000.0",
@@ -645,7 +646,7 @@ def test_optional_tables_accepted():
     scene = parse_scene(FIXED, SRC)
     assert scene.water_depth == 500.0 and scene.seabed.stiffness == 1.0e5
     assert scene.current.heights == (0.0, 500.0) and scene.current.is_planar
-    assert scene.ends.kind == "fixed" and scene.ends.hang_off == (600.0, 500.0)
+    assert isinstance(scene.ends, FixedEnds) and scene.ends.hang_off == (600.0, 500.0)
     assert scene.bvp.max_nodes == 30000
 
 
@@ -699,3 +700,151 @@ def test_clamped_ends_accepted():
             if "[vfife]" in FIXED else FIXED + '\n[vfife]\nclamped_ends = ["bottom", "top"]\n')
     assert parse_scene(text, SRC).vfife.clamped_ends == ("bottom", "top")
     assert parse_scene(FIXED, SRC).vfife.clamped_ends == ()
+
+
+# ------------------------------------------------------------------ 5. scene.replace == the file
+# issue 28 item 4: a scene built in code is checked as its file is. Each case: the file's
+# mutation and the same change through Scene.replace (a field, or a key path into a part);
+# both give the same one line, key path and source.
+REPLACE_CASES = [
+    ("negative-segment-length", F, "length = 600.0", "length = -5",
+     {"segments[1].length": -5}, "segments[1].length: must be > 0 m, got -5"),
+    ("nan-water-depth", F, "water_depth = 500.0", "water_depth = nan",
+     {"water_depth": math.nan}, "environment.water_depth: must be a finite number, got nan"),
+    ("negative-gravity", W, "gravity = 9.8", "gravity = -9.81", {"gravity": -9.81},
+     "environment.gravity: must be >= 1 m/s2, got -9.81"),
+    ("hang-off-below-the-anchor", F, "hang_off = [600.0, 500.0]", "hang_off = [600.0, -10.0]",
+     {"ends.hang_off": (600.0, -10.0)}, "ends.hang_off[1]: must be > 0 (the hang-off cannot "
+     "be at or below the seabed y = 0), got -10"),
+    ("hang-off-below-the-anchor-one-entry", F, "hang_off = [600.0, 500.0]",
+     "hang_off = [600.0, -10.0]", {"ends.hang_off[1]": -10.0}, "ends.hang_off[1]: must be > 0"),
+    ("hang-off-behind-the-anchor", F, "hang_off = [600.0, 500.0]", "hang_off = [-600.0, 500.0]",
+     {"ends.hang_off": (-600.0, 500.0)}, "ends.hang_off[0]: must be > anchor[0] = 0"),
+    ("anchor-below-the-seabed", F, "anchor = [0.0, 0.0]", "anchor = [0.0, -1.0]",
+     {"ends.anchor": (0.0, -1.0)}, "ends.anchor[1]: must be >= 0 (the seabed is y = 0)"),
+    ("hang-off-above-the-surface", F, "water_depth = 500.0", "water_depth = 400.0",
+     {"water_depth": 400.0}, "ends.hang_off[1]: must be <= water_depth 400 m"),
+    ("unknown-line-type", F, 'line_type = "steel"\nlength = 600.0',
+     'line_type = "titanium"\nlength = 600.0', {"segments[1].line_type": "titanium"},
+     "segments[1].line_type: unknown line type 'titanium' (defined: 'steel')"),
+    ("line-type-range", F, "drag_normal = 1.0", "drag_normal = 12.0",
+     {"line_types.steel.drag_normal": 12.0}, "line_types.steel.drag_normal: must be <= 10"),
+    ("bore-not-inside", F, "inner_diameter = 0.165", "inner_diameter = 0.2032",
+     {"line_types.steel.inner_diameter": 0.2032}, "line_types.steel.inner_diameter: must be < "
+     "0.2032 m"),
+    ("current-speeds-count", F, "speeds = [0.0, 1.2]", "speeds = [0.0, 1.2, 1.5]",
+     {"environment.current.speeds": (0.0, 1.2, 1.5)},
+     "environment.current.speeds: must have as many entries as heights (2), got 3"),
+    ("current-heights-order", F, "heights = [0.0, 500.0]", "heights = [500.0, 0.0]",
+     {"current.heights": (500.0, 0.0)}, "environment.current.heights[1]: must be > heights[0]"),
+    ("seabed-stiffness", F, "stiffness = 1.0e5", "stiffness = -1.0e5",
+     {"seabed.stiffness": -1.0e5}, "seabed.stiffness: must be > 0 N/m2"),
+    ("tdp-tension", W, "tdp_tension = 160000.0", "tdp_tension = 1.6e11",
+     {"ends.tdp_tension": 1.6e11}, "ends.tdp_tension: must be <= 1e+09 N"),
+    ("inextensible-shorter-than-chord", F, "hang_off = [600.0, 500.0]",
+     "hang_off = [900.0, 500.0]\n[model]\naxial = \"inextensible\"",
+     {"ends.hang_off": (900.0, 500.0), "model": {"axial": "inextensible"}},
+     "segments: line length 1000 m is not longer than the distance 1029.56 m"),
+    ("model-choice", F, "[bvp]", "[model]\naxial = \"stretchy\"\n[bvp]",
+     {"model": {"axial": "stretchy"}}, "model.axial: must be one of 'extensible'"),
+    ("extensible-without-ea", F, "axial_stiffness = 2.0e9\n", "",
+     {"line_types.steel.axial_stiffness": None},
+     "line_types.steel.axial_stiffness: required for the extensible model"),
+    ("bvp-setting", F, "tolerance = 1.0e-6", "tolerance = 0.5", {"bvp.tolerance": 0.5},
+     "bvp.tolerance: must be <= 0.1, got 0.5"),
+    ("expert-setting", F, "max_nodes = 30000\n", "max_nodes = 30000\n[vfife.expert]\n"
+     "static_damping = 0.0\n", {"vfife.expert.static_damping": 0.0},
+     "vfife.expert.static_damping: must be > 0, got 0"),
+]
+
+
+@pytest.mark.parametrize("case_id,base,old,new,changes,says", REPLACE_CASES,
+                         ids=[c[0] for c in REPLACE_CASES])
+def test_replace_gives_the_files_error(case_id, base, old, new, changes, says):
+    # protects: scene.replace(...) is refused with the same one line as the file
+    from_file = load_error(mutate(BASES[base], old, new))
+    scene = parse_scene(BASES[base], SRC)
+    with pytest.raises(SceneError) as info:
+        scene.replace(**changes)
+    from_replace = str(info.value)
+    assert from_replace == from_file, (from_replace, from_file)
+    assert from_file.startswith(f"{SRC}: {says}"), from_file
+
+
+def test_dynamics_replace_gives_the_files_error():
+    # protects: a [dynamics] whose default ramp (one period) is not shorter than the run
+    dyn = "\n[dynamics]\nduration = 5.0\n[dynamics.top_motion]\naxis = \"y\"\namplitude = 1.0\n"
+    from_file = load_error(WANG + dyn + "period = 10.0\n")
+    scene = parse_scene(WANG + dyn + "period = 4.0\n", SRC)
+    with pytest.raises(SceneError) as info:
+        scene.replace(**{"dynamics.top_motion.period": 10.0})
+    assert str(info.value) == from_file
+    assert from_file.startswith(f"{SRC}: dynamics.duration: must be > 10 s, the default ramp")
+
+
+def test_a_part_given_whole_to_replace_names_its_own_field():
+    # a part built in code is checked when it is built, before the scene sees it: its own
+    # field and source; the key path form gives the scene's path and source
+    from riser.scene import FixedEnds
+    scene = parse_scene(FIXED, SRC)
+    with pytest.raises(SceneError) as info:
+        scene.replace(ends=FixedEnds(anchor=(0.0, 0.0), hang_off=(600.0, -10.0)))
+    assert (info.value.source, info.value.key) == ("<FixedEnds>", "hang_off[1]")
+
+
+def test_replace_paths_change_one_value_and_keep_the_rest():
+    scene = parse_scene(FIXED, SRC)
+    new = scene.replace(**{"segments[0].length": 450.0, "environment.current.speeds": (0.0, 1.0),
+                           "line_types.steel.drag_normal": 1.2, "vfife.static_damping": 4.0,
+                           "ends.hang_off[0]": 650.0}, gravity=9.8)
+    assert new.segments[0].length == 450.0 and new.segments[1] == scene.segments[1]
+    assert new.current.speeds == (0.0, 1.0) and new.current.heights == scene.current.heights
+    assert new.line_types["steel"].drag_normal == 1.2 and new.ends.hang_off == (650.0, 500.0)
+    assert new.vfife.static_damping == 4.0 and new.gravity == 9.8
+    assert scene.segments[0].length == 400.0                       # the original is unchanged
+    for bad, says in (({"segments[5].length": 1.0}, "no such key in segments (it has 2"),
+                      ({"ends.tdp_tension": 1.0}, "no such key in ends (known keys here: "
+                                                  "anchor, hang_off)"),
+                      ({"dynamics.duration": 1.0}, "no such key in dynamics (not given"),
+                      ({"colour": "red"}, "not a field or key path of the scene")):
+        with pytest.raises(SceneError) as info:
+            scene.replace(**bad)
+        assert str(info.value).startswith(f"{SRC}: {next(iter(bad))}: {says}"), info.value
+
+
+#: keys of the file that are no field of the model (the reader derives the section from
+#: them, or converts the angle): Scene.replace has no path to them
+FILE_ONLY = {"wall_thickness", "density", "youngs_modulus", "poisson_ratio", "shear_modulus",
+             "hang_off_angle_from_vertical_deg"}
+REPLACE_VARIANTS = {"string": "Not Valid", "bool": True, "minus1": -1, "zero": 0,
+                    "nan": float("nan"), "1e30": 1e30}
+
+
+def replace_mutation_cases():
+    for base_name, text in BASES.items():
+        for path, _ in leaves(tomllib.loads(text)):
+            if len(path) > 1 and path[-1] not in FILE_ONLY:    # root keys: name, title, source
+                for variant in REPLACE_VARIANTS:
+                    yield pytest.param(base_name, path, variant,
+                                       id=f"{base_name}:{path_str(path)}:{variant}")
+
+
+@pytest.mark.parametrize("base_name,path,variant", list(replace_mutation_cases()))
+def test_replace_mutation_table(base_name, path, variant):
+    # protects: every leaf of both baselines set to a bad (or good) value by a key path of
+    # Scene.replace gives what the file gives: the same line, or a scene
+    data = tomllib.loads(BASES[base_name])
+    parent = data
+    for p in path[:-1]:
+        parent = parent[p]
+    parent[path[-1]] = REPLACE_VARIANTS[variant]
+    outcomes = []
+    for build in (lambda: parse_scene(dump_toml(data), SRC),
+                  lambda: parse_scene(BASES[base_name], SRC).replace(
+                      **{path_str(path): REPLACE_VARIANTS[variant]})):
+        try:
+            build()
+            outcomes.append("loads")
+        except SceneError as exc:
+            outcomes.append(str(exc))
+    assert outcomes[0] == outcomes[1]

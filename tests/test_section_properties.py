@@ -30,7 +30,7 @@ def test_section_without_wall_dimension(name):
     (lt,) = sc.line_types.values()
     assert lt.inner_diameter is None
     (p,) = segment_properties(sc)
-    # closed forms of the section inputs (README "Scene files"): the weight in water is the
+    # closed forms of the section inputs (docs/scene-files.md): the weight in water is the
     # sheet's when given, else m g - rho g pi D^2 / 4 on the displacement diameter; drag
     # and added mass act on the hydrodynamic diameter
     g, rho = sc.gravity, sc.water_density

@@ -45,7 +45,7 @@ from verification.sweeps.file import SWEEP_DIR, load_sweep
 #: branches of the agreement column are exercised. The tests never hard-code which is
 #: which: they recompute the protocol on independent solves.
 OFFSETS = ([1480.0, 1000.0], [1520.0, 1000.0])
-#: the columns of cases.csv in the documented order (README "Outputs", the docstring of
+#: the columns of cases.csv in the documented order (docs/sweeps.md, the docstring of
 #: verification/sweeps/report.py): case, method, one column per vary key, ...
 SUMMARY_COLUMNS = ["hang_off_tension", "hang_off_angle_deg", "max_tension", "max_tension_s",
                    "min_tension", "max_moment", "max_moment_s", "max_shear", "tdp_x",
@@ -223,7 +223,8 @@ def test_set_applies_to_every_case_and_keeps_the_rest_of_the_base(tmp_path):
 
 def test_builtin_yu2021_a3_envelope_against_its_file():
     """The example sweep: its lists read with tomllib (the file, not the reader), the
-    cases expected from the README's rule (product, first slowest, zip = one dimension)."""
+    cases expected from the documented rule (docs/sweeps.md: product, first slowest, zip =
+    one dimension)."""
     path = SWEEP_DIR / "yu2021-a3-envelope.toml"
     data = tomllib.loads(path.read_text())
     vary = {v["key"]: v["values"] for v in data["vary"]}
@@ -516,7 +517,8 @@ def test_report_has_its_sections_and_names_the_worst_case(swept):
 
 
 def test_each_case_folder_reruns_alone(swept):
-    """cases/NNNN/scene.toml is the case as a scene file (README: `compare` reruns it)."""
+    """cases/NNNN/scene.toml is the case as a scene file (docs/sweeps.md: `compare` reruns
+    it)."""
     for case in swept.sweep.cases:
         folder = swept.out / "cases" / f"{case.index:04d}"
         again = load_scene(folder / "scene.toml")

@@ -17,6 +17,7 @@ import shutil
 import socket
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import pytest
@@ -212,22 +213,92 @@ def test_a_dask_run_resumes_a_local_run(local_run, cluster, sweep_file, tmp_path
 
 
 # ------------------------------------------------------------------ throughput (slow)
+def _ours_cpu_s() -> tuple[float, dict]:
+    """CPU seconds [user + system] of this process and its reaped children (the local
+    pool's workers, once shut down), and of each live descendant (the Dask scheduler,
+    nannies and workers), keyed by (pid, start time)."""
+    import resource
+
+    import psutil
+    total = sum(getattr(resource.getrusage(who), f) for who in
+                (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN)
+                for f in ("ru_utime", "ru_stime"))
+    live = {}
+    for proc in psutil.Process().children(recursive=True):
+        try:
+            t = proc.cpu_times()
+            live[(proc.pid, proc.create_time())] = t.user + t.system
+        except psutil.Error:                   # it ended meanwhile: reaped, or not ours
+            pass
+    return total, live
+
+
+def _machine_busy_s() -> tuple[float, int]:
+    """(CPU seconds the cores this process may run on have spent busy since boot, that
+    number of cores). Busy: everything but idle and iowait, steal included (a virtual
+    machine's core taken by the host is a core we do not get); guest time is already in
+    user."""
+    import psutil
+    per = psutil.cpu_times(percpu=True)
+    cpus = sorted(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else []
+    mine = [per[i] for i in cpus] if cpus and max(cpus) < len(per) else per
+    idle = ("idle", "iowait", "guest", "guest_nice")
+    return sum(v for t in mine for k, v in t._asdict().items() if k not in idle), len(mine)
+
+
 @needs_dask
 @pytest.mark.slow
 @pytest.mark.skipif((os.cpu_count() or 1) < 2, reason="throughput with 2 workers needs 2 cores")
-def test_two_workers_raise_the_throughput_on_every_engine():
+def test_two_workers_raise_the_throughput_on_every_engine(monkeypatch):
     # riser-verify bench --sweep on the built-in scr-envelope (12 cases of ~1.6 s): two
-    # workers must beat one on both engines. The bound 1.3x is well below the 1.74x (local)
-    # and 1.57x (Dask) measured on an idle 2-core machine, because a loaded CI machine
-    # shares its cores; the ideal is 2x and nothing here can exceed it by more than noise.
+    # workers must beat one on both engines, by as much as the cores left free by the
+    # other processes of the machine allow. Measured per engine run (1 local worker, 2
+    # local workers, the Dask cluster's 2 workers): the CPU time the machine's cores spent
+    # busy, minus that of this process and its children (the pool's workers, the Dask
+    # processes), is the other processes' load O [cores]. A run of k workers can use
+    # min(k, C - O) of the C cores, so the ideal speed-up is
+    #     S* = min(2, C - O_2) / min(1, C - O_1)
+    # (2 on an idle 2-core machine; 4/3 with one busy process elsewhere: it takes 1 of 2
+    # cores from one worker, 2/3 from two). Measured on an idle 2-core machine: 1.74x
+    # (local) and 1.57x (Dask) of S* = 2, i.e. 87 % and 79 % of it (the pool's spawn,
+    # imports and Numba cache loads; the Dask client and scheduler); the bound 0.65 S*
+    # (1.3x on an idle machine) leaves 0.14 of S* for noise. It fails an engine that runs
+    # the cases one at a time whenever the others leave it more than ~1.3 cores (serial:
+    # ~0.87x < 0.65 S* for S* > 1.34; checked by hand with bench.WORKERS = 1, both engines
+    # serial: 0.96x and 0.94x against S* = 1.99, failed); under a heavier load S* itself
+    # shrinks to what can be told apart, and the message gives the loads. Upper bound:
+    # more than 1.1 S* would be a timing error (the single worker slowed by something not
+    # measured here). Measured under another engineer's load of ~1 core: local 1.24x of
+    # S* = 1.27, Dask 1.40x of S* = 1.63 (the old fixed bound 1.3x failed there).
     from verification.runtime.progress import Progress
-    from verification.sweeps.bench import measure
+    from verification.sweeps import bench
     from verification.sweeps.file import load_sweep
+    phases = []
+    time_engine = bench._time_engine
+
+    def measured(sweep, engine, prog, label):
+        busy0, cores = _machine_busy_s()
+        ours0, live0 = _ours_cpu_s()
+        t0 = time.perf_counter()
+        out = time_engine(sweep, engine, prog, label)
+        wall = time.perf_counter() - t0
+        busy1, _ = _machine_busy_s()
+        ours1, live1 = _ours_cpu_s()
+        ours = ours1 - ours0 + sum(v - live0.get(k, 0.0) for k, v in live1.items())
+        phases.append({"label": label, "wall_s": wall, "ours_cores": ours / wall,
+                       "others_cores": max(busy1 - busy0 - ours, 0.0) / wall, "cores": cores})
+        return out
+
+    monkeypatch.setattr(bench, "_time_engine", measured)
     with Progress("bench --sweep", quiet=True) as prog:
-        b = measure(load_sweep("scr-envelope"), prog)
+        b = bench.measure(load_sweep("scr-envelope"), prog)
     e = b["engines"]
     assert all(e[k]["cases_run"] == 12 and e[k]["cases_failed"] == 0
-               for k in ("local_1", "local_2", "dask_2"))
-    assert e["local_2"]["speed_up"] > 1.3 and e["dask_2"]["speed_up"] > 1.3
-    assert e["local_2"]["speed_up"] < 2.2 and e["dask_2"]["speed_up"] < 2.2
+               for k in ("local_1", "local_2", "dask_2")), e
+    assert len(phases) == 3, phases                     # local_1, local_2, dask_2 in turn
+    free = [max(p["cores"] - p["others_cores"], 0.1) for p in phases]
+    for key, f in (("local_2", free[1]), ("dask_2", free[2])):
+        ideal = min(2.0, f) / min(1.0, free[0])
+        why = (key, round(e[key]["speed_up"], 3), "ideal", round(ideal, 3), phases)
+        assert 0.65 * ideal < e[key]["speed_up"] < 1.1 * ideal, why
     assert 0.0 < b["dask_overhead"]["ms_per_task"] < 100.0   # a scheduler, not a timeout

@@ -12,11 +12,13 @@ import numpy as np
 import pytest
 from scipy.optimize import fsolve
 
+import builders
 import vfife
 from riser.errors import UnsupportedSceneError
 from riser.result import Status
 from riser.io.scene_file import load_scene, scene_from_dict
 from riser.profile import summarize
+from riser.scene import FixedEnds
 from riser.transform import DEFAULT_SEABED_STIFFNESS, fixed_ends_scene
 from vfife.mesh import build_mesh
 from vfife.model import Model
@@ -26,29 +28,21 @@ from vfife.timestep import choose_step, critical_steps
 
 ROOT = Path(__file__).resolve().parents[1]
 WANG = ROOT / "verification" / "scenes" / "wang2014-baseline.toml"
-# BVP solution of the Wang baseline (REFERENCE.md section 1, Table 2, V = 0)
+# BVP solution of the Wang baseline (docs/references.md, Wang et al. 2014, Table 2, V = 0)
 WANG_TOP = (1625.0, 1586.3)
 WANG = {"path": WANG, "T_top": 831.19e3, "M_max": 31963.0, "crest": 368.22, "sag": 309.10}
 
 
 def line_scene(length, anchor, hang_off, *, EA=1e6, EI=1e4, mass=10.0, weight=0.1,
                seabed=None, current=None, dynamics=None, extra=None):
-    d = {"name": "t", "environment": {"gravity": 9.81, "water_density": 1025.0},
-         "line_types": {"p": {"outer_diameter": 0.1, "inner_diameter": 0.05,
-                              "mass_per_length": mass, "axial_stiffness": EA,
-                              "bending_stiffness": EI, "drag_normal": 1.0,
-                              "drag_tangential": 0.0, "added_mass": 1.0}},
-         "segments": [{"line_type": "p", "length": length, "submerged_weight": weight}],
-         "ends": {"anchor": list(anchor), "hang_off": list(hang_off)}}
-    if seabed:
-        d["seabed"] = seabed
-    if current:
-        d["environment"]["current"] = current
-    if dynamics:
-        d["dynamics"] = dynamics
-    if extra:
-        d["vfife"] = extra
-    return scene_from_dict(d, "test")
+    """One segment of a 0.1 m pipe (:func:`builders.small_pipe` with these EA, EI, mass,
+    submerged ``weight`` and no tangential drag) between fixed ends."""
+    lt = builders.small_pipe(mass_per_length=mass, axial_stiffness=EA, bending_stiffness=EI,
+                             drag_tangential=0.0)
+    return builders.scene(builders.line(
+        length, anchor, hang_off, line_type=lt, submerged_weight=weight,
+        environment={"current": current} if current else None,
+        seabed=seabed or None, dynamics=dynamics or None, vfife=extra or None))
 
 
 def wang_fixed():
@@ -65,7 +59,7 @@ def test_unsupported_ends_raise_clear_error():
 
 def test_fixed_ends_scene_conversion():
     sc = wang_fixed()
-    assert sc.ends.kind == "fixed" and sc.ends.anchor == (-300.0, 0.0)
+    assert isinstance(sc.ends, FixedEnds) and sc.ends.anchor == (-300.0, 0.0)
     assert sc.segments[0].length == pytest.approx(690.0)
     # a soil property, not a mesh one: the same stiffness whatever the element length
     assert sc.seabed is not None and sc.seabed.stiffness == DEFAULT_SEABED_STIFFNESS
@@ -373,9 +367,9 @@ def test_dynamics_heave_outputs(tmp_path):
 def test_blow_up_is_reported_not_nan():
     base = wang_fixed()
     from riser.scene import Dynamics, TopMotion
-    sc = base.replace(dynamics=Dynamics(duration=2.0, output_interval=1.0,
+    sc = base.replace(dynamics=Dynamics(duration=2.0, output_interval=1.0,   # ramp in the run
                                         top_motion=TopMotion(axis="y", amplitude=1.0,
-                                                             period=10.0)),
+                                                             period=10.0, ramp_time=2.0)),
                       vfife=base.vfife.replace(time_step=0.01))   # 5x the axial critical step
     res = vfife.solve(sc, element_length=10.0)
     assert not res.converged and res.profile is None

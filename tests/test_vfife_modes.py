@@ -14,8 +14,8 @@ import math
 import numpy as np
 import pytest
 
+import builders
 import vfife
-from riser.io.scene_file import scene_from_dict
 from riser.modes import PLANES
 from verification.catalog import resolve
 from vfife.modes import free_vibration, solve_modes
@@ -28,28 +28,16 @@ def straight(length, span, *, EA, EI, mass=10.0, D=0.02, d=0.01, ca=0.0, hydro=N
           "axial_stiffness": EA, "bending_stiffness": EI, "added_mass": ca}
     if hydro:
         lt["hydro_diameter"] = hydro
-    return scene_from_dict({
-        "name": "straight", "line_types": {"p": lt},
-        "segments": [{"line_type": "p", "length": length, "submerged_weight": 0.0}],
-        "ends": {"anchor": [0.0, 50.0], "hang_off": [span, 50.0]},
-        "vfife": {"element_length": h}}, "test")
+    return builders.scene(builders.straight(length, span, height=50.0, name="straight",
+                                            line_type=lt, vfife={"element_length": h}))
 
 
 def catenary(tolerance=1.0e-6, current=None):
     """150 m of line from an anchor on an elastic seabed to a hang-off 60 m up, 2 m
     elements, relaxed to ``tolerance`` element weights."""
-    d = {"name": "catenary",
-         "line_types": {"p": {"outer_diameter": 0.1, "inner_diameter": 0.05,
-                              "mass_per_length": 20.0, "axial_stiffness": 1e7,
-                              "bending_stiffness": 1e3, "added_mass": 1.0,
-                              "drag_normal": 1.0}},
-         "seabed": {"stiffness": 1e5},
-         "segments": [{"line_type": "p", "length": 150.0, "submerged_weight": 100.0}],
-         "ends": {"anchor": [0.0, 0.0], "hang_off": [100.0, 60.0]},
-         "vfife": {"element_length": 2.0, "static_tolerance": tolerance}}
-    if current:
-        d["environment"] = {"current": current}
-    return scene_from_dict(d, "test")
+    return builders.scene(builders.catenary(
+        name="catenary", environment={"current": current} if current else None,
+        vfife={"element_length": 2.0, "static_tolerance": tolerance}))
 
 
 def freqs(res, plane):

@@ -68,7 +68,7 @@ def test_dynamics_csv_has_the_contract_columns(tmp_path):
     assert list(df.quantity) == ["max_moment", "max_hang_off_tension",
                                  "lateral_speed_peak_from_top", "lateral_speed_range"]
     assert set(df.case) == {"A1"}
-    # REFERENCE.md section 2 in SI: 161.2 kN m, 230.2 kN, 420 m, +-0.50 m/s
+    # docs/references.md, Yu et al. 2021, in SI: 161.2 kN m, 230.2 kN, 420 m, +-0.50 m/s
     assert list(df.paper) == [161.2e3, 230.2e3, 420.0, 0.50]
     assert np.allclose(df.rel_err, (df.vfife - df.paper) / df.paper.abs(), rtol=1e-6)
     assert (tmp_path / "dynamics.png").exists()

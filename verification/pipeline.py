@@ -24,7 +24,7 @@ from riser import validity
 from riser.errors import SolveFailed, UnsupportedSceneError
 from riser.profile import Profile
 from riser.result import METHODS, DynamicsResult, SolveResult, Status
-from riser.scene import Scene
+from riser.scene import FixedEnds, Scene
 from riser.transform import fixed_ends_scene
 from vfife.dynamic_outputs import ARC_LENGTH_COLUMNS, ARC_LENGTH_KEYS
 from vfife.ends import require_vfife_model
@@ -55,7 +55,7 @@ def vfife_equivalent(scene: Scene, paper: SolveResult | None = None) -> VfifeEqu
     converged BVP result of ``scene`` to start from (solved here when None). Raises
     :class:`UnsupportedSceneError` when the BVP refuses the scene (the VFIFE's conversion
     needs it) and :class:`SolveFailed` when it does not converge."""
-    if scene.ends.kind == "fixed":
+    if isinstance(scene.ends, FixedEnds):
         return VfifeEquivalent(scene)
     t0 = time.perf_counter()
     if paper is None:
@@ -123,7 +123,7 @@ def solve_scene(scene: Scene, method: str, *, tolerance: float | None = None,
     elif progress is not None:
         progress(f"{method}: solving")
     solve = importlib.import_module(m.package).solve
-    if not m.fixed_ends_only or scene.ends.kind == "fixed":
+    if not m.fixed_ends_only or isinstance(scene.ends, FixedEnds):
         return solve(scene, **kwargs)
     return _solve_converted(scene, solve, kwargs, progress)
 

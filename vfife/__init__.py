@@ -8,7 +8,7 @@ differences. Statics by dynamic relaxation with mesh sequencing, dynamics with a
 prescribed hang-off motion. See :mod:`vfife.kernels` for the equations and
 :func:`vfife.solve` for the entry point.
 
-Continuum model (the same as the BVP's, README "One model, two methods"; implemented
+Continuum model (the same as the BVP's, docs/theory.md "One model, two methods"; implemented
 here independently): s is the unstretched arc length; the axial force of an element is
 N = EA (l - l0) / l0, i.e. strain eps = T / EA from the effective tension; bending
 moments come from the end rotations per unstretched length, M = EI dtheta/ds; weight, drag

@@ -3,14 +3,14 @@
 from __future__ import annotations
 
 from riser.errors import UnsupportedSceneError
-from riser.scene import Scene
+from riser.scene import FixedEnds, Scene
 
 
 def require_fixed_ends(scene: Scene) -> None:
     """Raise :class:`UnsupportedSceneError` unless the scene has fixed ends and asks for the
     model the VFIFE elements are: extensible (strain T/EA) on an elastic (penalty) seabed.
     The inextensible line and the rigid seabed are BVP limits only."""
-    if scene.ends.kind != "fixed":
+    if not isinstance(scene.ends, FixedEnds):
         raise UnsupportedSceneError(
             f"{scene.source}: ends: vfife needs fixed ends (anchor + hang_off) but the scene "
             f"gives the '{scene.ends.kind}' form; solve it with the bvp method first and "

@@ -143,7 +143,7 @@ class Model:
         """Nodal rotational inertias [kg m2] and their inverses used by the kernels.
         Clamped ends ([vfife] clamped_ends) do not rotate: infinite rotational inertia
         (jinv = 0); the director keeps the direction it has in the state the model is
-        given (see :meth:`set_state` and the README)."""
+        given (see :meth:`set_state` and docs/scene-files.md, Solver settings)."""
         self.jrot = np.asarray(jrot, float).copy()
         self.jinv = 1.0 / self.jrot
         for end in self.clamped:

@@ -1,9 +1,14 @@
 """Reading a scene file: TOML -> validated :class:`riser.scene.Scene`.
 
-Every check raises :class:`~riser.errors.SceneError` naming the file, the key path and the
-allowed range (one line on the command line). Well-formed but physically impossible scenes
-(a line too short to reach its hang-off, an inextensible line shorter than its chord) are
-refused here, before any solver runs.
+The reader checks what the file adds to the model: TOML types, required and unknown keys,
+which end form the keys of ``[ends]`` select, and the file-only conveniences (the wall and
+material of a line type instead of its section properties, the hang-off angle from the
+vertical). Ranges and the rules between keys are the parts' own (:mod:`riser.spec`,
+``Scene.__post_init__``), checked when the reader builds them, so a file and a
+``scene.replace`` give the same :class:`~riser.errors.SceneError`: one line naming the
+file, the key path and the allowed range. Well-formed but physically impossible scenes (a
+line too short to reach its hang-off, an inextensible line shorter than its chord) are
+refused before any solver runs.
 """
 
 from __future__ import annotations
@@ -12,21 +17,21 @@ import math
 import tomllib
 from pathlib import Path
 
+from ..ends import FILE_KEYS as ENDS_FILE_KEYS
+from ..ends import FixedEnds, HangOffAngleEnds, TdpTensionEnds, TopTensionEnds
 from ..errors import SceneError
-from ..internal_flow import check_internal_flow, read_internal_flow
+from ..line import BORE, FILE_KEYS, POISSON_RATIO, LineType, Segment, check_bore
 from ..scene import (
-    LIMITS,
+    MODEL_KEYS,
     Current,
     Dynamics,
-    Ends,
-    LineType,
+    InternalFlow,
     Scene,
     Seabed,
-    Segment,
     TopMotion,
-    require_axial_stiffness,
 )
 from ..settings import AnalyticSettings, BVPSettings, VFIFESettings
+from ..spec import specs
 from .toml_table import Table
 
 
@@ -80,88 +85,73 @@ def parse_scene(text: str, source: str = "<scene>") -> Scene:
 def scene_from_dict(data: dict, source: str = "<scene>") -> Scene:
     """Validate a parsed scene dictionary (the structure of the TOML file)."""
     root = Table(data, "", source)
-    name = root.string("name", pattern=r"[a-z0-9][a-z0-9-]*")
-    title = root.string("title", "")
-    provenance = root.string("source", "")
-
+    values = root.fields(Scene)                       # name, title, source
     env = root.table("environment") or Table({}, "environment", source)
-    gravity = env.number("gravity", 9.81, ge=LIMITS["gravity"][0], le=LIMITS["gravity"][1], unit="m/s2")
-    water_density = env.number("water_density", 1025.0, ge=LIMITS["water_density"][0],
-                               le=LIMITS["water_density"][1], unit="kg/m3")
-    water_depth = env.number("water_depth", None, ge=LIMITS["water_depth"][0],
-                             le=LIMITS["water_depth"][1], unit="m")
+    values.update(env.fields(Scene, "environment"))
     cur_t = env.table("current")
-    current = _read_current(cur_t) if cur_t is not None else None
+    if cur_t is not None:
+        values["current"] = _read_part(cur_t, Current)
     env.finish()
 
     sb_t = root.table("seabed")
-    seabed = None
     if sb_t is not None:
-        seabed = Seabed(
-            stiffness=sb_t.number("stiffness", gt=0.0, le=LIMITS["seabed_stiffness"], unit="N/m2"),
-            friction=sb_t.number("friction", 0.0, ge=0.0, le=5.0),
-            damping=sb_t.number("damping", 0.0, ge=0.0, le=10.0),
-        )
-        sb_t.finish()
+        values["seabed"] = _read_part(sb_t, Seabed)
 
     lt_root = root.table("line_types", required=True)
-    if not lt_root.data:
-        raise SceneError(source, "line_types", "at least one line type is required")
-    line_types: dict[str, LineType] = {}
-    for lt_name in list(lt_root.data):
-        sub = lt_root.table(lt_name)
-        line_types[lt_name] = _read_line_type(sub, lt_name)
+    values["line_types"] = {name: _read_line_type(lt_root.table(name), name)
+                            for name in list(lt_root.data)}
     lt_root.finish()
-
-    segments = tuple(_read_segment(t, line_types) for t in root.array_of_tables("segments"))
-
-    ends_t = root.table("ends", required=True)
-    ends = _read_ends(ends_t)
+    values["segments"] = tuple(_read_part(t, Segment) for t in root.array_of_tables("segments"))
+    values["ends"] = _read_ends(root.table("ends", required=True))
 
     dyn_t = root.table("dynamics")
-    dynamics = _read_dynamics(dyn_t) if dyn_t is not None else None
+    if dyn_t is not None:
+        values["dynamics"] = _read_dynamics(dyn_t)
     flow_t = root.table("internal_flow")
-    flow = read_internal_flow(flow_t) if flow_t is not None else None
-
+    if flow_t is not None:
+        values["internal_flow"] = _read_sub_tables(flow_t, InternalFlow, required={
+            "slug": ("density_amplitude", "slug_length")})
     model_t = root.table("model")
-    model = _read_model(model_t) if model_t is not None else {}
-    bvp = BVPSettings.read(root.table("bvp"))
-    analytic = AnalyticSettings.read(root.table("analytic"))
-    vfife = VFIFESettings.read(root.table("vfife"))
+    if model_t is not None:
+        values["model"] = {key: model_t.value(key, sp) for key, sp in MODEL_KEYS.items()
+                           if model_t.has(key)}
+        model_t.finish()
+    for name, cls in (("bvp", BVPSettings), ("analytic", AnalyticSettings),
+                      ("vfife", VFIFESettings)):
+        t = root.table(name)
+        if t is not None:
+            values[name] = _read_sub_tables(t, cls)
     root.finish()
-
-    scene = Scene(name=name, title=title, provenance=provenance, gravity=gravity,
-                  water_density=water_density, water_depth=water_depth, current=current,
-                  seabed=seabed, line_types=line_types, segments=segments, ends=ends,
-                  dynamics=dynamics, internal_flow=flow, bvp=bvp, analytic=analytic, vfife=vfife,
-                  model=model, source=source)
-    if flow is not None:
-        check_internal_flow(scene)
-    _check_model(scene)
-    _check_geometry(scene)
-    return scene
+    return Scene(**values, source=source)
 
 
-def _read_current(t: Table) -> Current:
-    heights = t.numbers("heights", ge=-LIMITS["coordinate"], le=LIMITS["coordinate"], unit="m")
-    speeds = t.numbers("speeds", ge=-LIMITS["speed"], le=LIMITS["speed"], unit="m/s")
-    heading = t.number("heading_deg", 0.0, ge=-360.0, le=360.0, unit="deg")
+def _read_part(t: Table, cls):
+    """The part ``cls`` of the fields of table ``t``."""
+    values = t.fields(cls)
     t.finish()
-    if len(heights) != len(speeds):
-        raise t.error("speeds", f"must have as many entries as heights ({len(heights)}), got {len(speeds)}")
-    for i in range(1, len(heights)):
-        if not heights[i] > heights[i - 1]:
-            raise t.error(f"heights[{i}]", f"must be > heights[{i - 1}] = {heights[i - 1]:g} "
-                          f"(strictly increasing), got {heights[i]:g}")
-    return Current(heights=heights, speeds=speeds, heading_deg=heading)
+    return t.build(cls, **values)
+
+
+def _read_sub_tables(t: Table, cls, required: dict | None = None):
+    """The part ``cls`` of table ``t`` and its sub-tables ([vfife.expert],
+    [internal_flow.slug]); ``required``: the keys a given sub-table must hold."""
+    values = t.fields(cls)
+    for sub in dict.fromkeys(sp.table for _, sp in specs(cls) if sp.table):
+        sub_t = t.table(sub)
+        if sub_t is not None:
+            values.update(sub_t.fields(cls, sub, required=(required or {}).get(sub, ())))
+            sub_t.finish()
+    t.finish()
+    return t.build(cls, **values)
 
 
 def _read_line_type(t: Table, name: str) -> LineType:
     """A line type from its section properties (OD, mass per length, EA, EI: a cable, a
     chain, a flexible pipe) or from its wall and material (a steel pipe)."""
-    D = t.number("outer_diameter", gt=0.0, le=LIMITS["diameter"], unit="m")
-    d = _read_bore(t, D)
-    wall = "wall_thickness or inner_diameter (the wall's area)"
+    sp = dict(specs(LineType))
+    D = t.value("outer_diameter", sp["outer_diameter"], checked=True)
+    d = _read_bore(t, D, sp["inner_diameter"])
+    wall = f"{BORE} (the wall's area)"
     area = 0.0 if d is None else math.pi / 4.0 * (D * D - d * d)
     inertia = 0.0 if d is None else math.pi / 64.0 * (D ** 4 - d ** 4)
     if t.has("density") and t.has("mass_per_length"):
@@ -171,83 +161,51 @@ def _read_line_type(t: Table, name: str) -> LineType:
     if d is None and not t.has("mass_per_length"):
         raise t.error("mass_per_length", f"required: give it [kg/m] (with axial_stiffness and "
                       f"bending_stiffness), or {wall} with density")
-    if t.has("mass_per_length"):
-        mass = t.number("mass_per_length", gt=0.0, le=LIMITS["mass_per_length"], unit="kg/m")
-    else:
-        rho = t.number("density", gt=0.0, le=LIMITS["density"], unit="kg/m3")
-        mass = rho * area
-
-    lo, hi = LIMITS["youngs_modulus"]
-    E = t.number("youngs_modulus", None, ge=lo, le=hi, unit="Pa")
+    values = {"name": name, "outer_diameter": D, "inner_diameter": d}
+    if not t.has("mass_per_length"):
+        values["mass_per_length"] = t.value("density", FILE_KEYS["density"], checked=True) * area
+    E = t.value("youngs_modulus", FILE_KEYS["youngs_modulus"], None, checked=True)
     if E is not None and d is None:
         raise t.error("youngs_modulus", f"needs {wall}; give axial_stiffness [N] and "
                       "bending_stiffness [N m2] instead")
-    smax = LIMITS["stiffness"]
     if E is None and not t.has("bending_stiffness"):
         raise t.error("bending_stiffness", "required when youngs_modulus is not given")
-    # axial_stiffness may be missing here: _check_model requires it for an extensible model
-    EA = t.number("axial_stiffness", None if E is None else E * area, gt=0.0, le=smax, unit="N")
-    EI = t.number("bending_stiffness", None if E is None else E * inertia, gt=0.0, le=smax,
-                  unit="N m2")
-    poisson = t.number("poisson_ratio", 0.3, ge=0.0, le=0.5)
-    G = t.number("shear_modulus", None, gt=0.0, le=hi, unit="Pa")
+    # axial_stiffness may be missing here: Scene requires it for an extensible model
+    if E is not None:
+        values["axial_stiffness"] = t.value("axial_stiffness", sp["axial_stiffness"], E * area)
+        values["bending_stiffness"] = t.value("bending_stiffness", sp["bending_stiffness"],
+                                              E * inertia)
+    else:
+        values["bending_stiffness"] = t.value("bending_stiffness", sp["bending_stiffness"])
+    EI = values["bending_stiffness"]
+    poisson = t.value("poisson_ratio", FILE_KEYS["poisson_ratio"], POISSON_RATIO, checked=True)
+    G = t.value("shear_modulus", FILE_KEYS["shear_modulus"], None, checked=True)
     if G is not None and d is None:
         raise t.error("shear_modulus", f"needs {wall}; give torsional_stiffness [N m2] instead")
     # GJ = G * 2I; with G = E / (2 (1 + nu)) that is EI / (1 + nu)
-    gj_default = G * 2.0 * inertia if G is not None else EI / (1.0 + poisson)
-    GJ = t.number("torsional_stiffness", gj_default, gt=0.0, le=smax, unit="N m2")
-    contents = t.number("contents_density", 0.0, ge=0.0, le=LIMITS["density"], unit="kg/m3")
-    if contents > 0.0 and d is None:
-        raise t.error("contents_density", "needs inner_diameter or wall_thickness (the bore "
-                      "that holds the contents)")
-    L = LIMITS["line_load"]
-    lt = LineType(
-        name=name, outer_diameter=D, inner_diameter=d, mass_per_length=mass,
-        axial_stiffness=EA, bending_stiffness=EI, torsional_stiffness=GJ,
-        drag_normal=t.number("drag_normal", 1.0, ge=0.0, le=10.0),
-        drag_tangential=t.number("drag_tangential", 0.0, ge=0.0, le=10.0),
-        added_mass=t.number("added_mass", 1.0, ge=0.0, le=10.0),
-        contents_density=contents,
-        hydro_diameter=t.number("hydro_diameter", None, gt=0.0, le=LIMITS["diameter"], unit="m"),
-        submerged_weight=t.number("submerged_weight", None, ge=-L, le=L, unit="N/m"),
-        max_strain=t.number("max_strain", 0.01, gt=0.0, le=1.0),
-        compression=t.boolean("compression", True),
-    )
+    values["torsional_stiffness"] = t.value(
+        "torsional_stiffness", sp["torsional_stiffness"],
+        G * 2.0 * inertia if G is not None else EI / (1.0 + poisson))
+    values.update(t.fields(LineType, names=tuple(n for n in sp if n not in values)))
     t.finish()
-    return lt
+    return t.build(LineType, **values)
 
 
-def _read_bore(t: Table, D: float) -> float | None:
+def _read_bore(t: Table, D: float, sp) -> float | None:
     """The inner diameter [m] from wall_thickness or inner_diameter; None when neither is
     given (a section given by its properties)."""
     if t.has("wall_thickness") and t.has("inner_diameter"):
         raise t.error("inner_diameter", "give either wall_thickness or inner_diameter, not both")
     if t.has("inner_diameter"):
-        return t.number("inner_diameter", ge=0.0, lt=D, unit="m")
+        d = t.value("inner_diameter", sp, checked=True)
+        check_bore(D, d, t.error)
+        return d
     if t.has("wall_thickness"):
-        wt = t.number("wall_thickness", gt=0.0, unit="m")
+        wt = t.value("wall_thickness", FILE_KEYS["wall_thickness"], checked=True)
         if wt > D / 2:
             raise t.error("wall_thickness", f"must be <= the radius {D / 2:g} m, got {wt:g}")
         return D - 2.0 * wt
     return None
-
-
-def _read_segment(t: Table, line_types: dict[str, LineType]) -> Segment:
-    lt = t.string("line_type")
-    if lt not in line_types:
-        raise t.error("line_type", f"unknown line type {lt!r} (defined: {', '.join(map(repr, line_types))})")
-    L = LIMITS["line_load"]
-    seg = Segment(
-        line_type=lt,
-        length=t.number("length", gt=0.0, le=LIMITS["length"], unit="m"),
-        buoyancy=t.number("buoyancy", 0.0, ge=-L, le=L, unit="N/m"),
-        submerged_weight=t.number("submerged_weight", None, ge=-L, le=L, unit="N/m"),
-        weight_scale=t.number("weight_scale", 1.0, ge=-100.0, le=100.0),
-        hydro_diameter=t.number("hydro_diameter", None, gt=0.0, le=LIMITS["diameter"], unit="m"),
-        label=t.string("label", ""),
-    )
-    t.finish()
-    return seg
 
 
 #: the hang-off angle of form (b), by the reference it is measured from; the key must
@@ -257,60 +215,47 @@ ANGLE_KEYS = ("hang_off_angle_from_horizontal_deg", "hang_off_angle_from_vertica
 #: the keys of each form; hang_off_height belongs to two: without top_tension it is form
 #: (b)'s (alone, it asks for its angle)
 _END_FORMS = {
-    "tdp_tension": ("tdp_tension",),
-    "hang_off_angle": ("hang_off_height", *ANGLE_KEYS),
-    "top_tension": ("hang_off_height", "top_tension"),
-    "fixed": ("anchor", "hang_off"),
+    TdpTensionEnds: ("tdp_tension",),
+    HangOffAngleEnds: ("hang_off_height", *ANGLE_KEYS),
+    TopTensionEnds: ("hang_off_height", "top_tension"),
+    FixedEnds: ("anchor", "hang_off"),
 }
 
 
-def _read_ends(t: Table) -> Ends:
+def _read_ends(t: Table):
     if t.has("hang_off_angle_deg"):
         raise t.error("hang_off_angle_deg", "ambiguous: say which angle it is, "
                       "hang_off_angle_from_horizontal_deg or hang_off_angle_from_vertical_deg")
-    present = [kind for kind, keys in _END_FORMS.items()
+    present = [form for form, keys in _END_FORMS.items()
                if any(t.has(k) for k in keys if k != "hang_off_height") or (
-                   kind == "hang_off_angle" and t.has("hang_off_height")
+                   form is HangOffAngleEnds and t.has("hang_off_height")
                    and not t.has("top_tension"))]
     if not present:
         raise t.error("", "give one of: tdp_tension; hang_off_height + "
                       "hang_off_angle_from_horizontal_deg (or _from_vertical_deg); "
                       "hang_off_height + top_tension; anchor + hang_off")
     if len(present) > 1:
-        keys = list(dict.fromkeys(k for kind in present for k in _END_FORMS[kind] if t.has(k)))
+        keys = list(dict.fromkeys(k for form in present for k in _END_FORMS[form] if t.has(k)))
         raise t.error(keys[-1], f"more than one [ends] form given ({', '.join(keys)}); "
                       "use exactly one")
-    kind = present[0]
-    C = LIMITS["coordinate"]
-    if kind == "tdp_tension":
-        ends = Ends(kind, tdp_tension=t.number("tdp_tension", gt=0.0, le=LIMITS["tension"], unit="N"))
-    elif kind == "hang_off_angle":
-        height = t.number("hang_off_height", gt=0.0, le=C, unit="m")
-        ends = Ends(kind, hang_off_height=height, hang_off_angle_deg=_read_angle(t))
-    elif kind == "top_tension":
-        top = t.number("top_tension", gt=0.0, le=LIMITS["tension"], unit="N")
+    form = present[0]
+    if form is HangOffAngleEnds:
+        sp = dict(specs(HangOffAngleEnds))
+        values = {"hang_off_height": t.value("hang_off_height", sp["hang_off_height"]),
+                  "hang_off_angle_deg": _read_angle(t, sp["hang_off_angle_deg"])}
+    elif form is TopTensionEnds:
+        values = t.fields(TopTensionEnds, names=("top_tension",))
         if not t.has("hang_off_height"):
             raise t.error("hang_off_height", "required with top_tension (the J-lay form: "
                           "the hang-off height [m] and the effective tension there [N])")
-        height = t.number("hang_off_height", gt=0.0, le=C, unit="m")
-        ends = Ends(kind, hang_off_height=height, top_tension=top)
+        values.update(t.fields(TopTensionEnds, names=("hang_off_height",)))
     else:
-        anchor = t.numbers("anchor", length=2, ge=-C, le=C, unit="m")
-        hang = t.numbers("hang_off", length=2, ge=-C, le=C, unit="m")
-        if anchor[1] < 0.0:
-            raise t.error("anchor[1]", f"must be >= 0 (the seabed is y = 0), got {anchor[1]:g}")
-        if hang[1] <= 0.0:
-            raise t.error("hang_off[1]", f"must be > 0 (the hang-off cannot be at or below the "
-                          f"seabed y = 0), got {hang[1]:g}")
-        if hang[0] <= anchor[0]:
-            raise t.error("hang_off[0]", f"must be > anchor[0] = {anchor[0]:g} (x points from "
-                          f"the anchor towards the hang-off), got {hang[0]:g}")
-        ends = Ends(kind, anchor=anchor, hang_off=hang)
+        values = t.fields(form)
     t.finish()
-    return ends
+    return t.build(form, **values)
 
 
-def _read_angle(t: Table) -> float:
+def _read_angle(t: Table, horizontal) -> float:
     """The hang-off angle from the horizontal [deg], given from either reference."""
     given = [k for k in ANGLE_KEYS if t.has(k)]
     if len(given) != 1:
@@ -319,89 +264,19 @@ def _read_angle(t: Table) -> float:
         raise t.error(ANGLE_KEYS[0], "give exactly one of hang_off_angle_from_horizontal_deg "
                       "and hang_off_angle_from_vertical_deg" + why)
     if given[0] == ANGLE_KEYS[0]:
-        return t.number(ANGLE_KEYS[0], gt=0.0, le=90.0, unit="deg")
-    return 90.0 - t.number(ANGLE_KEYS[1], ge=0.0, lt=90.0, unit="deg")
+        return t.value(ANGLE_KEYS[0], horizontal)
+    return 90.0 - t.value(ANGLE_KEYS[1], ENDS_FILE_KEYS[ANGLE_KEYS[1]], checked=True)
 
 
 def _read_dynamics(t: Table) -> Dynamics:
-    duration = t.number("duration", gt=0.0, le=1.0e6, unit="s")
-    interval = t.number("output_interval", min(1.0, duration), gt=0.0, le=duration, unit="s")
-    damping = t.number("damping", 0.0, ge=0.0, le=100.0, unit="1/s")
-    stats = t.number("statistics_start", None, ge=0.0, lt=duration, unit="s")
-    save = t.boolean("save_states", False)
-    motion = None
+    values = t.fields(Dynamics)
     tm = t.table("top_motion")
     if tm is not None:
-        axis = tm.string("axis", choices=("x", "y", "z"))
-        ramp = tm.number("ramp_time", None, ge=0.0, le=duration, unit="s")
-        if tm.has("times") or tm.has("displacements"):
-            times = tm.numbers("times", min_length=2, ge=0.0, le=1.0e6, unit="s")
-            disp = tm.numbers("displacements", length=len(times), ge=-1000.0, le=1000.0, unit="m")
-            for i in range(1, len(times)):
-                if not times[i] > times[i - 1]:
-                    raise tm.error(f"times[{i}]", "must be strictly increasing")
-            motion = TopMotion(axis=axis, times=times, displacements=disp, ramp_time=ramp)
-        else:
-            motion = TopMotion(axis=axis,
-                               amplitude=tm.number("amplitude", ge=0.0, le=1000.0, unit="m"),
-                               period=tm.number("period", gt=0.0, le=1.0e4, unit="s"),
-                               ramp_time=ramp)
-            if ramp is None and motion.period >= duration:
-                raise t.error("duration", f"must be > {motion.period:g} s, the default ramp "
-                              "(one period of top_motion), got "
-                              f"{duration:g}; or set top_motion.ramp_time (0: no ramp)")
+        motion = tm.fields(TopMotion, names=("axis", "ramp_time"))
+        form = (("times", "displacements") if tm.has("times") or tm.has("displacements")
+                else ("amplitude", "period"))
+        motion.update(tm.fields(TopMotion, names=form, required=form))
         tm.finish()
+        values["top_motion"] = tm.build(TopMotion, **motion)
     t.finish()
-    return Dynamics(duration=duration, output_interval=interval, top_motion=motion,
-                    damping=damping, statistics_start=stats, save_states=save)
-
-
-MODEL_CHOICES = {"axial": ("extensible", "inextensible"), "seabed": ("elastic", "rigid")}
-
-
-def _read_model(t: Table) -> dict:
-    out = {key: t.string(key, None, choices=choices) for key, choices in MODEL_CHOICES.items()}
-    t.finish()
-    return {k: v for k, v in out.items() if v is not None}
-
-
-def _check_model(scene: Scene) -> None:
-    """The [model] choices fit the end form, the seabed and the line types."""
-    src = scene.source
-    wang = scene.ends.kind != "fixed"
-    if scene.model.get("seabed") == "elastic" and wang:
-        raise SceneError(src, "model.seabed", f"'elastic' needs fixed ends (anchor + hang_off); "
-                         f"the '{scene.ends.kind}' form puts the touchdown on a rigid seabed "
-                         "(use 'rigid' or omit the key)")
-    if "seabed" in scene.model and not wang and scene.seabed is None:
-        raise SceneError(src, "model.seabed", "needs a [seabed] table (with its stiffness)")
-    if scene.axial_model == "extensible":
-        why = "the default for fixed ends" if "axial" not in scene.model else "[model] axial"
-        require_axial_stiffness(scene, f"required for the extensible model ({why}): give it "
-                                "[N] or youngs_modulus, or set [model] axial = \"inextensible\"")
-
-
-def _check_geometry(scene: Scene) -> None:
-    """Physically impossible but well-formed scenes are rejected before solving."""
-    e = scene.ends
-    src = scene.source
-    if e.kind == "fixed":
-        chord = math.hypot(e.hang_off[0] - e.anchor[0], e.hang_off[1] - e.anchor[1])
-        # an extensible line no longer than the chord is taut (it stretches); only the
-        # inextensible model cannot reach
-        if scene.axial_model == "inextensible" and scene.total_length <= chord:
-            raise SceneError(src, "segments", f"line length {scene.total_length:g} m is not longer "
-                             f"than the distance {chord:g} m between anchor and hang_off: too "
-                             "short for an inextensible line ([model] axial = \"extensible\" "
-                             "lets it stretch)")
-        if scene.water_depth is not None and e.hang_off[1] > scene.water_depth:
-            raise SceneError(src, "ends.hang_off[1]", f"must be <= water_depth "
-                             f"{scene.water_depth:g} m (the model is fully submerged), "
-                             f"got {e.hang_off[1]:g}")
-    if e.kind in ("hang_off_angle", "top_tension"):
-        if scene.water_depth is not None and e.hang_off_height > scene.water_depth:
-            raise SceneError(src, "ends.hang_off_height", f"must be <= water_depth "
-                             f"{scene.water_depth:g} m, got {e.hang_off_height:g}")
-        if scene.total_length <= e.hang_off_height:
-            raise SceneError(src, "segments", f"line length {scene.total_length:g} m cannot reach "
-                             f"the hang-off height {e.hang_off_height:g} m")
+    return t.build(Dynamics, **values)

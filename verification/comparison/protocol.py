@@ -32,7 +32,7 @@ import pandas as pd
 import bvp
 import vfife
 from riser.errors import SolveFailed
-from riser.scene import Scene
+from riser.scene import FixedEnds, Scene
 from verification.pipeline import shifted, vfife_equivalent
 from verification.quantities import reference_depth
 
@@ -148,7 +148,7 @@ def compare(scene: Scene, *, element_length: float | None = None, paper_model: b
         notes.append("The scene's [dynamics] are ignored: the protocol compares the static "
                      "equilibrium.")
     t0 = time.perf_counter()
-    if scene.ends.kind != "fixed":
+    if not isinstance(scene.ends, FixedEnds):
         now("bvp: solving the paper model for the conversion to fixed ends")
     eq = vfife_equivalent(scene)
     matched, s_shift, paper = eq.scene, eq.s_shift, eq.paper

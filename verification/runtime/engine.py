@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 #: environment of local worker processes, unless already set: one BLAS thread each (the
 #: OpenBLAS threads of ``solve_bvp`` compete with the other worker: ``reproduce all`` on 2
 #: cores took 317 s and 536 s of CPU with them, 308 s and 513 s without, with the same
-#: numbers). Dask workers are started by their owner: the README says to set it there.
+#: numbers). Dask workers are started by their owner: docs/sweeps.md says to set it there.
 WORKER_ENV = {"OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
 #: seconds to wait for a Dask scheduler to answer
 CONNECT_TIMEOUT_S = 10.0

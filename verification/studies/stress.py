@@ -31,6 +31,7 @@ import pandas as pd
 
 from riser.errors import SceneError, SolveFailed
 from riser.result import Status
+from riser.scene import FixedEnds
 from verification.catalog import SCENE_DIR, resolve
 from verification.comparison.agreement import agreement
 from verification.pipeline import solve_scene
@@ -148,7 +149,7 @@ def run(out_dir: str | Path = "reports/stress", names: list[str] | None = None, 
             vs = v.summary()
             evidence = (f" | VFIFE finds an equilibrium outside the BVP's form: touchdown "
                         f"x = {vs['tdp_x']:.1f} m")
-            if sc.ends.kind == "fixed":
+            if isinstance(sc.ends, FixedEnds):
                 evidence += f" (anchor at x = {sc.ends.anchor[0]:g} m)"
             evidence += f", minimum tension {vs['min_tension'] / 1e3:.1f} kN"
             rows[-2]["message"] += evidence

@@ -1,6 +1,6 @@
 """Reproduction of Wang, Duan & Tian (2014) Table 2 with the boundary-value solver.
 
-Variants per current (REFERENCE.md section 1):
+Variants per current (docs/references.md, Wang et al. 2014):
 
 - ``forward``: the paper's S_L and T_TDP (form a), C_Dn = 0.1, g = 9.8 (the built-in scenes);
 - ``inverse``: hang-off height and angle fixed to the computed baseline's (form b), S_L and
@@ -26,7 +26,7 @@ from scipy.optimize import brentq
 import bvp
 import vfife
 from riser.errors import SolveFailed
-from riser.scene import Ends, Scene
+from riser.scene import HangOffAngleEnds, Scene
 from verification.catalog import resolve
 from verification.pipeline import vfife_equivalent
 from verification.report.figures import new_figure, save
@@ -88,8 +88,8 @@ def with_cdn(scene: Scene, cdn: float) -> Scene:
 
 
 def inverse(scene: Scene, height: float, angle: float) -> Scene:
-    return scene.replace(ends=Ends("hang_off_angle", hang_off_height=height,
-                                   hang_off_angle_deg=angle))
+    return scene.replace(ends=HangOffAngleEnds(hang_off_height=height,
+                                               hang_off_angle_deg=angle))
 
 
 def _solve(scene: Scene):
@@ -259,7 +259,8 @@ def _report(df, fits, results, out: Path, t_forward, t_inverse, t_total, vf_time
         GENERATED_NOTE,
         "",
         "Steel lazy-wave riser, inextensible large-deformation beam, uniform current along x.",
-        "Inputs: Table 1 (REFERENCE.md section 1); buoyancy section w_e = -w_r, EI_e = EI_r;",
+        "Inputs: Table 1 (docs/references.md, Wang et al. 2014); buoyancy section w_e = -w_r, "
+        "EI_e = EI_r;",
         "scenes `wang2014-baseline` and `wang2014-current-*` (g = 9.8, C_Dn = 0.1 for the currents).",
         "",
         "## Summary",

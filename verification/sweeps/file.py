@@ -1,6 +1,6 @@
 """Reading a sweep file: TOML -> the validated list of load cases.
 
-A sweep file (the contract; README "Load-case sweeps")::
+A sweep file (the contract; docs/sweeps.md)::
 
     base = "yu2021-a3"             # a built-in scene name, or a scene file (relative to
                                    # the sweep file's folder)

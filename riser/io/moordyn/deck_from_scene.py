@@ -26,7 +26,7 @@ import math
 from dataclasses import dataclass, field
 
 from ...errors import UnsupportedSceneError
-from ...scene import Scene
+from ...scene import FixedEnds, Scene
 from ...sections import segment_properties
 from .deck import OPTION_KEYS, Deck, DeckLine, DeckLineType, DeckPoint
 
@@ -52,7 +52,7 @@ class ExportedDeck:
 
 def _check(scene: Scene) -> None:
     why = None
-    if scene.ends.kind != "fixed":
+    if not isinstance(scene.ends, FixedEnds):
         why = (f"the '{scene.ends.kind}' form: MoorDyn needs fixed ends (the command "
                "converts a touchdown-form scene first; a library caller uses "
                "verification.pipeline.vfife_equivalent)")

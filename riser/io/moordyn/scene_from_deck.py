@@ -2,7 +2,7 @@
 
 What a scene holds: one line from a bottom end to a hang-off, both fixed, made of
 segments. So the deck must describe one chain of lines joined end to end by free points
-(MoorDyn's joints, which are hinges: see the README), between two fixed or coupled points
+(MoorDyn's joints, which are hinges: see docs/moordyn.md), between two fixed or coupled points
 at their deck positions. Everything else is refused before anything is written, one line
 naming the deck line: bodies, rods, failures, external loads, waves, a seafloor file, a
 third fixed end, a point with a mass, a volume or drag (a clump weight or a float), a

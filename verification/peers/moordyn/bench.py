@@ -14,7 +14,7 @@ with 300 m on the seabed, 2,900 m of line, three sections: three MoorDyn lines).
   residual is within ``run.RESIDUAL_TOL`` (1 % of a node's weight) or the next run
   would exceed ``STATIC_BUDGET`` of wall time; the time of the first run that reached it.
 
-Only ratios are quoted in the README: absolute times differ 2-3x between machines.
+Only ratios are quoted in docs/moordyn.md: absolute times differ 2-3x between machines.
 """
 
 from __future__ import annotations

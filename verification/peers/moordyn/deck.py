@@ -11,7 +11,7 @@ import numpy as np
 
 from riser.errors import SceneError
 from riser.io.moordyn.deck_from_scene import ExportedDeck, export_scene
-from riser.scene import Scene
+from riser.scene import FixedEnds, Scene
 from verification import pipeline
 
 
@@ -45,7 +45,7 @@ class DeckFiles:
 
 def fixed_scene(scene: Scene) -> tuple[Scene, float, str]:
     """(the fixed-ends scene MoorDyn solves, the arc-length shift, the conversion note)."""
-    if scene.ends.kind == "fixed":
+    if isinstance(scene.ends, FixedEnds):
         return scene, 0.0, ""
     eq = pipeline.vfife_equivalent(scene)
     return eq.scene, eq.s_shift, eq.note

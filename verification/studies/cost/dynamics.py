@@ -32,7 +32,7 @@ import numpy as np
 import pandas as pd
 
 import vfife
-from riser.scene import Dynamics, Scene, TopMotion
+from riser.scene import Dynamics, FixedEnds, Scene, TopMotion
 from vfife.dynamics import DynamicsOutcome, run_dynamics
 from vfife.mesh import build_mesh
 from vfife.timestep import critical_steps
@@ -213,7 +213,7 @@ def predicted_cost(scene: Scene, s: DynSetting) -> float:
 def surface_piercing(scene: Scene) -> dict | None:
     """The hang-off's height below the sea surface [m] when the heave brings the line
     through it (|depth - hang-off height| < amplitude), else None."""
-    if scene.water_depth is None or scene.ends.hang_off is None:
+    if scene.water_depth is None or not isinstance(scene.ends, FixedEnds):
         return None
     below = float(scene.water_depth - scene.ends.hang_off[1])
     return {"below": below} if abs(below) < HEAVE_AMPLITUDE else None

@@ -2,7 +2,7 @@
 catenary, the analytic composite, the BVP and the VFIFE (``riser-verify reproduce
 kang2015`` -> ``reports/kang2015/``; report and figures: report.py).
 
-Scene ``kang2015-jlay`` (REFERENCE.md section 4); cases: the base case, the paper's
+Scene ``kang2015-jlay`` (docs/references.md, Kang et al. 2015); cases: the base case, the paper's
 wet-weight study (segment ``submerged_weight``) and its EI study (line type
 ``bending_stiffness``). Two models, never mixed in a row of table.csv: the paper's (no
 suffix; the J-lay form, inextensible on a rigid seabed: catenary, analytic, BVP; no

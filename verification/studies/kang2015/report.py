@@ -153,9 +153,9 @@ def _setup(q: dict) -> list[str]:
           f"{sv.seconds['vfife']:.1f} s)" if "vfife" in sv.seconds else "the VFIFE (not run)")
     return [
         "## What was run", "",
-        f"Scene `{cf['SCENE']}` (REFERENCE.md section 4): {lt.outer_diameter} m pipe, wall "
-        f"{(lt.outer_diameter - lt.inner_diameter) / 2:.5f} m, {base.segments[0].length:g} m "
-        f"of pipe, top tension {base.ends.top_tension / 1e3:g} kN at "
+        f"Scene `{cf['SCENE']}` (docs/references.md, Kang et al. 2015): {lt.outer_diameter} "
+        f"m pipe, wall {(lt.outer_diameter - lt.inner_diameter) / 2:.5f} m, "
+        f"{base.segments[0].length:g} m of pipe, top tension {base.ends.top_tension / 1e3:g} kN at "
         f"{base.ends.hang_off_height:g} m above a flat seabed. Base case: w = "
         f"{segment_properties(base)[0].weight:.1f} N/m (from the section), EI = "
         f"{lt.bending_stiffness:.4g} N m2 (E 2.07e11 Pa: the paper gives none), EA = "
@@ -179,8 +179,8 @@ def _setup(q: dict) -> list[str]:
         "of line added on an elastic seabed of 1e5 N/m2, extensible), solved by the catenary, "
         f"the analytic composite, the BVP and {vf}. Its arc lengths are measured from "
         "the J-lay BVP touchdown; each method's quantities from its own touchdown (lift-off).",
-        "", "The paper's equations and tables did not survive extraction (REFERENCE.md): its "
-        "stated trends are the reference, checked as numbers below.", ""]
+        "", "The paper's equations and tables did not survive extraction (docs/references.md, "
+        "Kang et al. 2015): its stated trends are the reference, checked as numbers below.", ""]
 
 
 def _tables(q: dict) -> list[str]:

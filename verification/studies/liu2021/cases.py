@@ -1,7 +1,7 @@
 """Liu, Ai, Sun & Jia (2021): a steel catenary riser conveying steady slug flow, with the
 VFIFE (``riser-verify reproduce liu2021`` -> ``reports/liu2021/``).
 
-The built-in scene ``liu2021-scr`` (REFERENCE.md section 3) in three variants: uniform
+The built-in scene ``liu2021-scr`` (docs/references.md, Liu et al. 2021) in three variants: uniform
 flow (the same mean density and speed, no slug), the paper's slug (eta 0.25, L_s 80 m) and
 the slug-length study L_s/D = 100, 160, 220, 280; each a static solve (the slug frozen at
 t = 0) and a run of the paper's 2000 s of top surge 0.5 sin(2 pi t / 9) m. The BVP refuses
@@ -236,7 +236,8 @@ def _setup(q: dict, base: Scene) -> list[str]:
            "too short for a common period: NOT the paper's steady state)")) if dy else "-"
     return [
         "## What was run", "",
-        f"Scene `{SCENE}` (REFERENCE.md section 3): {base.segments[0].length:g} m of pipe, "
+        f"Scene `{SCENE}` (docs/references.md, Liu et al. 2021): {base.segments[0].length:g} "
+        "m of pipe, "
         f"anchor {base.ends.anchor}, hang-off {base.ends.hang_off} m in {base.water_depth:g} m "
         f"of water; D {lt.outer_diameter} m, D_i {lt.inner_diameter} m, {lt.mass_per_length} "
         f"kg/m in air; C_Dn {lt.drag_normal:g}, C_a {lt.added_mass:g} (C_m = 2); contents "

@@ -7,7 +7,7 @@ The paper's current "along +x" therefore flows along our -x (heading 180 deg); w
 hang-off angle grows with speed as the paper reports (heading 0 would tilt the top the
 other way).
 
-Unstated inputs (REFERENCE.md section 2): the hang-off's horizontal offset X_h is
+Unstated inputs (docs/references.md, Yu et al. 2021): the hang-off's horizontal offset X_h is
 calibrated once, with the BVP, so that A3 without current has the published hang-off angle
 4.372 deg from vertical, and kept for every case; the internal contents are taken as empty;
 the seabed stiffness is 1e5 N/m2 (a soft clay), the same elastic seabed for both methods.
@@ -34,7 +34,7 @@ from scipy.optimize import brentq
 
 from riser.errors import SolveFailed
 from riser.result import Status
-from riser.scene import Current, Ends, Scene
+from riser.scene import Current, FixedEnds, Scene
 from verification.catalog import resolve
 from verification.pipeline import solve_scene
 from verification.report.figures import new_figure, save
@@ -87,7 +87,7 @@ def buoy_indices(scene: Scene) -> list[int]:
 
 
 def with_hang_off_x(scene: Scene, xh: float) -> Scene:
-    return scene.replace(ends=Ends("fixed", anchor=(0.0, 0.0), hang_off=(xh, DEPTH)))
+    return scene.replace(ends=FixedEnds(anchor=(0.0, 0.0), hang_off=(xh, DEPTH)))
 
 
 def layout(top_down: list[tuple[str, float]], base: Scene, buoyancy: float = BUOYANCY) -> Scene:
@@ -294,9 +294,9 @@ def _report(df: pd.DataFrame, out: Path, xh: float, stored: float, timing: dict,
         "",
         GENERATED_NOTE,
         "",
-        "Flexible riser of Table 1 (REFERENCE.md section 2): 1050 m in 500 m of water, buoyancy "
-        "sections with 1130 N/m uplift. Frames converted: positions below are in the paper's "
-        "frame (horizontal distance from the hang-off, depth below it).",
+        "Flexible riser of Table 1 (docs/references.md, Yu et al. 2021): 1050 m in 500 m of "
+        "water, buoyancy sections with 1130 N/m uplift. Frames converted: positions below are "
+        "in the paper's frame (horizontal distance from the hang-off, depth below it).",
         "",
         "## Assumptions (the paper does not give these)",
         "",
