@@ -224,6 +224,20 @@ def test_clear_removes_only_own_files_and_empty_own_subfolders(tmp_path):
     assert [p.name for p in (tmp_path / "cost" / "scr-steel").iterdir()] == ["notes.txt"]
 
 
+def test_an_out_below_a_file_is_bad_input_before_anything_runs(tmp_path, run_cli):
+    # a folder that cannot be created (a file where its parent should be) is refused with
+    # one line before any solve, for every command that takes --out (bench measured first
+    # and failed only when writing its JSON)
+    f = tmp_path / "results"
+    f.write_text("not a folder\n")
+    for argv in (["bench"], ["bench", "--sweep"], ["solve", "scr-steel"],
+                 ["compare", "scr-steel"], ["stress", "hard-stiff"]):
+        code, _, err = run_cli([*argv, "--out", str(f / "x")])
+        assert code == 2, (argv, err)
+        assert err.splitlines() == [f"error: {f / 'x'}: --out: cannot be created: {f} is a "
+                                    "file, not a folder"], (argv, err)
+
+
 def test_an_out_that_is_a_file_is_bad_input(tmp_path, run_cli):
     f = tmp_path / "results"
     f.write_text("not a folder\n")

@@ -65,12 +65,18 @@ def clear(folder: str | Path | None, names: tuple[str, ...]) -> list[Path]:
 
     ``folder`` None (the command's default folder, not known yet) or missing: nothing to
     do. Raises :class:`SceneError` (exit 2, before any solving) when ``folder`` is not a
-    folder or a stale file cannot be removed, so no old result survives unnoticed.
+    folder (or cannot be one: a file where a folder above it should be) or a stale file
+    cannot be removed, so no old result survives unnoticed.
     """
     if folder is None:
         return []
     base = Path(folder)
     if not base.exists():
+        # it is created later: the nearest existing folder above it must be a folder
+        above = next((a for a in base.parents if a.exists()), None)
+        if above is not None and not above.is_dir():
+            raise SceneError(str(base), "--out", f"cannot be created: {above} is a file, not "
+                             "a folder")
         return []
     if not base.is_dir():
         raise SceneError(str(base), "--out", "is a file, not a folder: give a folder for the "
