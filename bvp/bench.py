@@ -1,11 +1,20 @@
-"""Speed benchmark of the boundary-value solver (issue targets: the Wang baseline at
-tolerance 1e-6 in under 0.5 s; Table 2, 10 forward + 4 inverse solves, in under 10 s)."""
+"""Speed benchmarks of the boundary-value solver: the Wang baseline at tolerance 1e-6 (target
+under 0.5 s) and Table 2 (10 forward + 4 inverse solves, under 10 s), and the cost against
+the number of segments of one line (:func:`segment_scaling`: a line of 100 segments in
+about the time of the same line of 3). Scenes come in as arguments."""
 
 from __future__ import annotations
 
 import dataclasses
+import os
+import pickle
+import resource
 import statistics
+import subprocess
+import sys
 import time
+import tracemalloc
+from pathlib import Path
 
 from riser.scene import HangOffAngleEnds, Scene
 
@@ -51,3 +60,138 @@ def median_times(scenes: list[Scene], repeats: int = 3) -> dict:
         _timed(sc)
         out[sc.name] = statistics.median(_timed(sc)[0] for _ in range(repeats))
     return out
+
+
+# ------------------------------------------------------------ cost against the segment count
+def split_segments(scene: Scene, count: int) -> Scene:
+    """The same line in ``count`` segments (at least its own number): each segment cut into
+    equal sub-segments, the longest pieces cut first. Same physics, more joints."""
+    segs = scene.segments
+    cuts = [1] * len(segs)
+    while sum(cuts) < count:
+        i = max(range(len(segs)), key=lambda k: segs[k].length / cuts[k])
+        cuts[i] += 1
+    out = [dataclasses.replace(s, length=s.length / c) for s, c in zip(segs, cuts)
+           for _ in range(c)]
+    return scene.replace(name=f"{scene.name}-{len(out)}-segments", segments=tuple(out))
+
+
+def discrete_modules(scene: Scene, modules: int, fill: float = 0.3) -> Scene:
+    """A lazy wave with its buoyancy as ``modules`` discrete modules, as engineers model
+    them: the stretch from the first to the last segment with buoyancy becomes modules
+    (``fill`` of the pitch long) and bare gaps, alternating, carrying the same total uplift
+    [N] (2 modules - 1 + the other segments in all)."""
+    segs = list(scene.segments)
+    buoyant = [i for i, s in enumerate(segs) if s.buoyancy > 0.0]
+    if not buoyant:
+        raise ValueError(f"{scene.name}: no segment with buoyancy")
+    i0, i1 = buoyant[0], buoyant[-1]
+    zone = sum(s.length for s in segs[i0:i1 + 1])
+    uplift = sum(s.buoyancy * s.length for s in segs[i0:i1 + 1])
+    pitch = zone / (modules * fill + (modules - 1) * (1.0 - fill))
+    lm = fill * pitch if modules > 1 else zone
+    mid = []
+    for k in range(modules):
+        mid.append(dataclasses.replace(segs[i0], length=lm, buoyancy=uplift / (modules * lm),
+                                       label=f"module {k + 1}"))
+        if k < modules - 1:
+            mid.append(dataclasses.replace(segs[i0], length=(1.0 - fill) * pitch,
+                                           buoyancy=0.0, label="gap"))
+    return scene.replace(name=f"{scene.name}-{modules}-modules",
+                         segments=tuple(segs[:i0] + mid + segs[i1 + 1:]))
+
+
+def _peak_rss_mb() -> float:
+    """This process's peak resident set size [MB]: Linux's VmHWM (the high-water mark of
+    this program's memory, reset by exec), else getrusage's ru_maxrss (on Linux it keeps
+    the forking parent's peak across exec: a child of a 227 MB bench reported 227 MB
+    whatever it solved; macOS reports bytes)."""
+    try:
+        with open("/proc/self/status") as f:
+            for line in f:
+                if line.startswith("VmHWM:"):
+                    return float(line.split()[1]) / 1e3          # kB
+    except OSError:
+        pass
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    return peak / (1e6 if sys.platform == "darwin" else 1e3)
+
+
+def _measure(scene: Scene) -> dict:
+    """In a fresh process: the solve's wall time (the second of two, the first warms the
+    imports), the process's peak RSS [MB] before and after solving, and the peak of the
+    Python allocations during a third solve (tracemalloc: numpy's arrays, scipy's among
+    them; not SuperLU's C allocations)."""
+    import scipy.integrate  # noqa: F401  (imported before the baseline is read)
+    before = _peak_rss_mb()
+    solve(scene)
+    wall, res = _timed(scene)
+    peak = _peak_rss_mb()
+    tracemalloc.start()
+    solve(scene)
+    traced = tracemalloc.get_traced_memory()[1] / 1e6
+    tracemalloc.stop()
+    return {"segments": len(scene.segments), "status": res.status.value,
+            "nodes": res.info.get("nodes"), "wall_s": wall, "peak_rss_mb": peak,
+            "rss_before_mb": before, "traced_peak_mb": traced,
+            "hang_off_tension": (float(res.profile.tension[-1]) if res.profile is not None
+                                 else None)}
+
+
+#: the child of :func:`measure_in_child`: a fresh interpreter that imports the BVP only
+_CHILD = ("import pickle, sys; from bvp.bench import _measure; "
+          "sys.stdout.buffer.write(pickle.dumps(_measure(pickle.load(sys.stdin.buffer))))")
+
+
+def measure_in_child(scene: Scene) -> dict:
+    """:func:`_measure` in a fresh interpreter (no other package loaded, whatever the
+    caller has), so that its peak RSS is this solve's and the BVP's imports'."""
+    root = str(Path(__file__).resolve().parent.parent)
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(
+        [root] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p])}
+    out = subprocess.run([sys.executable, "-c", _CHILD], input=pickle.dumps(scene),
+                         capture_output=True, check=True, env=env)
+    return pickle.loads(out.stdout)
+
+
+def segment_scaling(lazy_wave: Scene, baseline: Scene,
+                    counts: tuple[int, ...] = (3, 10, 50, 100),
+                    modules: tuple[int, ...] = (1, 5, 25, 50)) -> dict:
+    """The cost against the number of segments, each solve in a fresh process: three
+    families of rows (segments, nodes, wall time, peak RSS): the same physics cut into
+    more segments (``baseline``, e.g. the 3-segment Wang riser, and the ``lazy_wave``, at
+    ``counts`` segments, the lazy wave from its own count up), and the lazy wave's buoyancy
+    as discrete modules (``modules``: 2 m - 1 + 2 segments), and the ratios of the largest
+    to the smallest of each family, measured side by side."""
+    fams = {
+        "same physics, " + baseline.name: [split_segments(baseline, n) for n in counts
+                                           if n >= len(baseline.segments)],
+        "same physics, " + lazy_wave.name: [split_segments(lazy_wave, n) for n in
+                                            sorted({max(n, len(lazy_wave.segments))
+                                                    for n in counts})],
+        "discrete modules, " + lazy_wave.name: [discrete_modules(lazy_wave, m)
+                                                for m in modules],
+    }
+    out = {}
+    for fam, scenes in fams.items():
+        rows = [measure_in_child(sc) for sc in scenes]
+        out[fam] = {"rows": rows, "wall_ratio_last_over_first": rows[-1]["wall_s"] / rows[0]["wall_s"],
+                    "segments_first_last": [rows[0]["segments"], rows[-1]["segments"]]}
+    return out
+
+
+def scaling_lines(record: dict) -> list[str]:
+    """A console table of :func:`segment_scaling`."""
+    lines = ["BVP cost against the segment count (each solve in a fresh process; peak RSS,"
+             " the same before solving, and the solve's traced arrays):",
+             f"  {'family':44s} {'segments':>8s} {'nodes':>6s} {'wall s':>7s} {'peak MB':>8s}"
+             f" {'before':>7s} {'arrays':>7s}"]
+    for fam, r in record.items():
+        for row in r["rows"]:
+            lines.append(f"  {fam:44s} {row['segments']:8d} {row['nodes'] or 0:6d} "
+                         f"{row['wall_s']:7.2f} {row['peak_rss_mb']:8.0f} "
+                         f"{row['rss_before_mb']:7.0f} {row['traced_peak_mb']:7.1f}")
+        lines.append(f"  {fam:44s} time {r['segments_first_last'][1]} / "
+                     f"{r['segments_first_last'][0]} segments: "
+                     f"{r['wall_ratio_last_over_first']:.2f}")
+    return lines

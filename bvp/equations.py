@@ -39,15 +39,17 @@ with the Morison drag of a current of signed speed V(y) along +x (eqs 3, 4)
 Drag is written as s|s| with its analytic Jacobian, which is smooth enough at sign
 changes; the foundation's kink at y = 0 has the one-sided Jacobian of its active branch.
 
-Contact zone (``split_first``): the solver may split the first segment at the lift-off
-point s_L, an unknown parameter with y(s_L) = 0. Stacked segment 0 is then the contact
-zone [0, s_L], where the foundation acts as the linear spring p = -k y (the active branch
-of the same law: y <= 0 there is checked after solving), and stacked segment 1 the rest of
-the first segment. Both pieces are smooth, so the collocation needs no refinement at the
-kink; the unilateral law stays on every other segment.
-
-Segments are stacked: segment k runs over tau in [0, 1] with s = s_k + L_k tau, and the
-solver works with the scaled state Y = u / scale so that every unknown is O(1).
+One domain (bvp/layout.py). The solver integrates over the unit coordinate tau with
+ds/dtau = a, so dY/dtau = a u'. Every term of a u' is a function of the state times one
+of the six coefficient products C = (a, a w, a/EI, a/EA, a c_n, a c_t): the pieces of the
+line have constant C, blended linearly across a tiny gap at each joint. The state is one
+block of 6 (the line), or two in the contact-zone form (``split_first``): block 0 is the
+contact zone [0, s_L] (its pieces the segments up to the lift-off point s_L, in any
+segment), where the foundation acts as the linear spring p = -k y (the active branch of
+the same law: y <= 0 there is checked after solving), and block 1 the rest of the line
+from s_L, an unknown parameter with y(s_L) = 0. The unilateral law holds everywhere in
+the line block.
+The solver works with the scaled state Y = u / scale so that every unknown is O(1).
 """
 
 from __future__ import annotations
@@ -56,19 +58,33 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .layout import Layout
+
 NSTATE = 6
 IX, IY, ITH, IM, IF, IT = range(NSTATE)
+NCOEF = 6                      # the products a, a w, a/EI, a/EA, a c_n, a c_t
+
+
+class LiftOffOutside(ValueError):
+    """The contact-zone form's lift-off point left the piece it is solved in."""
 
 
 @dataclass
 class BeamModel:
-    """Per-segment coefficients of the stacked problem (arrays of shape (n_seg,)).
+    """Per-segment properties of the line and its layout on the unit domain.
 
-    EI [N m2], EA [N] (``inf``: inextensible), w [N/m], c_n and c_t [kg/m2]; ``lengths``
-    [m] are the segment lengths solved (for a parameterised first segment, ``lengths[0]``
-    is replaced by the parameter); ``scale`` (shape (6,)) converts the scaled state to SI;
-    ``speed``/``speed_gradient`` give the signed in-plane current along +x [m/s] at height
-    y; ``k_seabed`` [N/m2] is the Winkler stiffness of the seabed (0: none).
+    EI [N m2], EA [N] (``inf``: inextensible), w [N/m], c_n and c_t [kg/m2] and
+    ``lengths`` [m] are per segment. The line block's pieces are the segments, except that
+    ``free_first_length`` makes the first piece's length the parameter p[0] *
+    ``length_scale`` (the suspended length of the first segment), and in the contact-zone
+    form (``split_first``) p[0] * ``length_scale`` is the lift-off point s_L in segment
+    ``cut``: the zone block's pieces are segments 0 .. cut - 1 and the part of segment
+    ``cut`` up to s_L, the line block's the rest of segment ``cut`` and the segments after
+    it. ``layout`` (``zone_layout``) places the line (zone) block's pieces on tau
+    (default: proportional to their lengths); ``scale`` (shape (6,)) converts the scaled
+    state to SI; ``speed``/``speed_gradient`` give the signed in-plane current along +x
+    [m/s] at height y; ``k_seabed`` [N/m2] is the Winkler stiffness of the seabed (0:
+    none); ``drag_factor`` scales the current (the continuation's load factor).
     """
 
     EI: np.ndarray
@@ -85,144 +101,225 @@ class BeamModel:
     split_first: bool = False
     length_scale: float = 1.0
     drag_factor: float = 1.0
+    layout: Layout | None = None
+    zone_layout: Layout | None = None
+    cut: int = 0
 
     def __post_init__(self) -> None:
+        self.EI = np.asarray(self.EI, float)
+        self.lengths = np.asarray(self.lengths, float)
         if self.EA is None:
-            self.EA = np.full_like(np.asarray(self.EI, float), np.inf)
+            self.EA = np.full_like(self.EI, np.inf)
         self.inv_EA = 1.0 / np.asarray(self.EA, float)       # 0 where inextensible
-        # per stacked segment: 1 where the foundation is the linear spring of the contact
-        # zone (split_first), 0 where it is unilateral
-        self.linear_zone = np.zeros(len(self.EI))
-        if self.split_first:
-            self.linear_zone[0] = 1.0
+        self.starts = np.concatenate([[0.0], np.cumsum(self.lengths)])
+        if self.layout is None:
+            self.layout = Layout.proportional(self.lengths[self.line_segs])
 
     @property
     def n_seg(self) -> int:
         return len(self.EI)
 
     @property
+    def n_block(self) -> int:
+        """Blocks of six states: 2 in the contact-zone form, else 1."""
+        return 2 if self.split_first else 1
+
+    @property
+    def n_state(self) -> int:
+        return NSTATE * self.n_block
+
+    @property
     def extensible(self) -> bool:
         return bool(np.any(self.inv_EA > 0.0))
 
-    def segment_lengths(self, p: np.ndarray) -> np.ndarray:
-        L = self.lengths.astype(float).copy()
-        if self.free_first_length:
+    @property
+    def line_segs(self) -> np.ndarray:
+        """Segment of each piece of the line block."""
+        return np.arange(self.cut if self.split_first else 0, self.n_seg)
+
+    @property
+    def zone_segs(self) -> np.ndarray:
+        """Segment of each piece of the contact zone's block (split form)."""
+        return np.arange(0, self.cut + 1)
+
+    # ------------------------------------------------------------------ lengths and s
+    def piece_lengths(self, p: np.ndarray) -> np.ndarray:
+        """Lengths [m] of the line block's pieces at the parameters p."""
+        L = self.lengths[self.line_segs].copy()
+        if self.split_first:
+            L[0] = self.starts[self.cut + 1] - p[0] * self.length_scale
+        elif self.free_first_length:
             L[0] = p[0] * self.length_scale
-            if self.split_first:          # the rest of the first segment
-                L[1] = self.lengths[0] + self.lengths[1] - L[0]
         return L
 
-    # ------------------------------------------------------------------ SI right-hand side
-    def _si(self, Y: np.ndarray) -> np.ndarray:
-        n = self.n_seg
-        return Y.reshape(n, NSTATE, -1) * self.scale[None, :, None]
+    def zone_lengths(self, p: np.ndarray) -> np.ndarray:
+        """Lengths [m] of the contact zone's pieces (split form)."""
+        L = self.lengths[:self.cut + 1].copy()
+        L[-1] = p[0] * self.length_scale - self.starts[self.cut]
+        return L
 
+    def zone_length(self, p: np.ndarray) -> float:
+        """Length s_L [m] of the contact zone (0 without one)."""
+        return float(p[0]) * self.length_scale if self.split_first else 0.0
+
+    def s_of(self, tau: np.ndarray, p: np.ndarray) -> np.ndarray:
+        """Unstretched arc length s [m] from the bottom end at tau, shape (blocks, m)."""
+        line = self.layout.s_of(tau, self.piece_lengths(p), self.zone_length(p))
+        if not self.split_first:
+            return line[None, :]
+        return np.stack([self.zone_layout.s_of(tau, self.zone_lengths(p)), line])
+
+    def tau_of(self, s: np.ndarray, p: np.ndarray) -> np.ndarray:
+        """tau of the line block at arc length s [m] (s >= the contact zone)."""
+        return self.layout.tau_of(s, self.piece_lengths(p), self.zone_length(p))
+
+    def segment_at(self, tau: np.ndarray, block: int) -> np.ndarray:
+        """Segment index at each tau of ``block``."""
+        if self.split_first and block == 0:
+            return self.zone_segs[self.zone_layout.piece(tau)]
+        return self.line_segs[self.layout.piece(tau)]
+
+    # ------------------------------------------------------------------ coefficients
+    def _unit(self, k) -> np.ndarray:
+        """Coefficient products per unit stretch of segments k: (6, len(k))."""
+        one = np.ones(len(k))
+        return np.stack([one, self.w[k], 1.0 / self.EI[k], self.inv_EA[k], self.c_n[k],
+                         self.c_t[k]])
+
+    def _block(self, tau, layout, segs, L, var, dL):
+        """(C, dC/dp) of one block: pieces ``segs`` of lengths ``L`` [m] on ``layout``;
+        piece ``var``'s length moves with p by ``dL`` [m] (None: no parameter)."""
+        base = self._unit(segs) * (L / layout.widths)[None, :]
+        kl, kr, lam = layout.blend(tau)
+        C = (1.0 - lam) * base[:, kl] + lam * base[:, kr]
+        if dL is None:
+            return C, None
+        share = (1.0 - lam) * (kl == var) + lam * (kr == var)
+        return C, share * (base[:, var:var + 1] * dL / L[var])
+
+    def coefficients(self, tau: np.ndarray, p: np.ndarray):
+        """[(C, dC/dp or None, linear)] per block: C (6, m) the products at tau, linear
+        True where the foundation is the contact zone's linear spring. Raises
+        :class:`LiftOffOutside` when the lift-off point leaves the segment the pieces were
+        cut in (a piece of negative length: no solution of this problem lies there)."""
+        tau = np.asarray(tau, float)
+        if self.split_first and not (self.starts[self.cut] < p[0] * self.length_scale
+                                     < self.starts[self.cut + 1]):
+            raise LiftOffOutside(
+                f"the lift-off point s = {p[0] * self.length_scale:.1f} m left the piece "
+                f"[{self.starts[self.cut]:.1f}, {self.starts[self.cut + 1]:.1f}] m it was "
+                "cut in")
+        dL = None
+        if self.free_first_length:
+            dL = (-1.0 if self.split_first else 1.0) * self.length_scale
+        C, dC = self._block(tau, self.layout, self.line_segs, self.piece_lengths(p), 0, dL)
+        if not self.split_first:
+            return [(C, dC, False)]
+        zone = self._block(tau, self.zone_layout, self.zone_segs, self.zone_lengths(p),
+                           self.cut, self.length_scale)
+        return [(*zone, True), (C, dC, False)]
+
+    # ------------------------------------------------------------------ SI right-hand side
     def _current(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         if self.speed is None or self.drag_factor == 0.0:
             z = np.zeros_like(y)
             return z, z
         return self.drag_factor * self.speed(y), self.drag_factor * self.speed_gradient(y)
 
-    def seabed_reaction(self, y: np.ndarray, linear=0.0) -> np.ndarray:
+    @property
+    def has_drag(self) -> bool:
+        return self.speed is not None and self.drag_factor != 0.0
+
+    def seabed_reaction(self, y: np.ndarray, linear=False) -> np.ndarray:
         """Upward seabed reaction per unstretched length p = k max(-y, 0) [N/m]; where
-        ``linear`` is 1 (contact zone) its active branch -k y."""
-        return self.k_seabed * np.where(linear > 0.0, -y, np.maximum(-y, 0.0))
+        ``linear`` (contact zone) its active branch -k y."""
+        return self.k_seabed * np.where(linear, -y, np.maximum(-y, 0.0))
 
-    def _reaction_and_slope(self, y: np.ndarray):
-        lin = self.linear_zone[:, None]
-        p = self.seabed_reaction(y, lin)
-        dp = np.where((lin > 0.0) | (y < 0.0), -self.k_seabed, 0.0)      # dp/dy
-        return p, dp
-
-    def si_rhs(self, u: np.ndarray) -> np.ndarray:
-        """du/ds [SI per m of unstretched length] for the SI state u of shape (n, 6, m)."""
-        x, y, th, M, F, T = (u[:, i, :] for i in range(NSTATE))
-        EI = self.EI[:, None]
-        w = self.w[:, None]
+    def terms(self, u: np.ndarray, C: np.ndarray, linear: bool) -> np.ndarray:
+        """a du/ds for the SI state u (6, m) with the coefficient products C (6, m); linear
+        in C (the blend and d/dp rely on it)."""
+        y, th, M, F, T = u[IY], u[ITH], u[IM], u[IF], u[IT]
+        a, aw, aiEI, aiEA, acn, act = C
         c, s = np.cos(th), np.sin(th)
-        kappa = M / EI
-        e1 = 1.0 + T * self.inv_EA[:, None]
+        e1 = a + T * aiEA
         d = np.empty_like(u)
-        d[:, IX] = e1 * c
-        d[:, IY] = e1 * s
-        d[:, ITH] = kappa
-        d[:, IM] = e1 * F
-        d[:, IF] = T * kappa - w * c
-        d[:, IT] = -F * kappa + w * s
-        if self.speed is not None and self.drag_factor != 0.0:
+        d[IX] = e1 * c
+        d[IY] = e1 * s
+        d[ITH] = aiEI * M
+        d[IM] = e1 * F
+        d[IF] = aiEI * T * M - aw * c
+        d[IT] = -aiEI * F * M + aw * s
+        if self.has_drag:
             V, _ = self._current(y)
             Vn = -V * s
             Vt = V * c
-            d[:, IF] += self.c_n[:, None] * np.abs(Vn) * Vn
-            d[:, IT] -= self.c_t[:, None] * np.abs(Vt) * Vt
+            d[IF] += acn * np.abs(Vn) * Vn
+            d[IT] -= act * np.abs(Vt) * Vt
         if self.k_seabed > 0.0:
-            p, _ = self._reaction_and_slope(y)
-            d[:, IF] += p * c
-            d[:, IT] -= p * s
+            p = a * self.seabed_reaction(y, linear)
+            d[IF] += p * c
+            d[IT] -= p * s
         return d
 
-    def rhs(self, tau: np.ndarray, Y: np.ndarray, p: np.ndarray) -> np.ndarray:
-        """dY/dtau of the stacked, scaled state; Y has shape (6 n_seg, m)."""
-        d = self.si_rhs(self._si(Y))
-        L = self.segment_lengths(p)
-        d *= (L[:, None, None] / self.scale[None, :, None])
-        return d.reshape(Y.shape)
-
-    def jac(self, tau: np.ndarray, Y: np.ndarray, p: np.ndarray):
-        """(d rhs/dY, d rhs/dp) with shapes (6n, 6n, m) and (6n, k, m)."""
-        n = self.n_seg
-        m = Y.shape[1]
-        u = self._si(Y)
-        y, th, M, F, T = u[:, IY], u[:, ITH], u[:, IM], u[:, IF], u[:, IT]
-        EI = self.EI[:, None]
-        iEA = self.inv_EA[:, None]
-        w = self.w[:, None]
+    def terms_jac(self, u: np.ndarray, C: np.ndarray, linear: bool) -> np.ndarray:
+        """d terms / du, shape (6, 6, m)."""
+        y, th, M, F, T = u[IY], u[ITH], u[IM], u[IF], u[IT]
+        a, aw, aiEI, aiEA, acn, act = C
         c, s = np.cos(th), np.sin(th)
-        kappa = M / EI
-        e1 = 1.0 + T * iEA
-        J = np.zeros((n, NSTATE, NSTATE, m))      # SI Jacobian per segment
-        J[:, IX, ITH] = -e1 * s
-        J[:, IX, IT] = c * iEA
-        J[:, IY, ITH] = e1 * c
-        J[:, IY, IT] = s * iEA
-        J[:, ITH, IM] = 1.0 / EI
-        J[:, IM, IF] = e1
-        J[:, IM, IT] = F * iEA
-        J[:, IF, IT] = kappa
-        J[:, IF, IM] = T / EI
-        J[:, IF, ITH] = w * s
-        J[:, IT, IF] = -kappa
-        J[:, IT, IM] = -F / EI
-        J[:, IT, ITH] = w * c
-        if self.speed is not None and self.drag_factor != 0.0:
+        e1 = a + T * aiEA
+        J = np.zeros((NSTATE, NSTATE, u.shape[1]))
+        J[IX, ITH] = -e1 * s
+        J[IX, IT] = c * aiEA
+        J[IY, ITH] = e1 * c
+        J[IY, IT] = s * aiEA
+        J[ITH, IM] = aiEI
+        J[IM, IF] = e1
+        J[IM, IT] = F * aiEA
+        J[IF, IT] = aiEI * M
+        J[IF, IM] = aiEI * T
+        J[IF, ITH] = aw * s
+        J[IT, IF] = -aiEI * M
+        J[IT, IM] = -aiEI * F
+        J[IT, ITH] = aw * c
+        if self.has_drag:
             V, dV = self._current(y)
-            cn = self.c_n[:, None]
-            ct = self.c_t[:, None]
             Vn = -V * s
             Vt = V * c
-            J[:, IF, ITH] += 2.0 * cn * np.abs(Vn) * (-V * c)
-            J[:, IF, IY] += 2.0 * cn * np.abs(Vn) * (-dV * s)
-            J[:, IT, ITH] -= 2.0 * ct * np.abs(Vt) * (-V * s)
-            J[:, IT, IY] -= 2.0 * ct * np.abs(Vt) * (dV * c)
+            J[IF, ITH] += 2.0 * acn * np.abs(Vn) * (-V * c)
+            J[IF, IY] += 2.0 * acn * np.abs(Vn) * (-dV * s)
+            J[IT, ITH] -= 2.0 * act * np.abs(Vt) * (-V * s)
+            J[IT, IY] -= 2.0 * act * np.abs(Vt) * (dV * c)
         if self.k_seabed > 0.0:
-            pr, dp = self._reaction_and_slope(y)
-            J[:, IF, IY] += dp * c
-            J[:, IF, ITH] -= pr * s
-            J[:, IT, IY] -= dp * s
-            J[:, IT, ITH] -= pr * c
-        L = self.segment_lengths(p)
+            pr = a * self.seabed_reaction(y, linear)
+            dp = a * np.where(linear | (y < 0.0), -self.k_seabed, 0.0)       # d(a p)/dy
+            J[IF, IY] += dp * c
+            J[IF, ITH] -= pr * s
+            J[IT, IY] -= dp * s
+            J[IT, ITH] -= pr * c
+        return J
+
+    # ------------------------------------------------------------------ scaled, for solve_bvp
+    def rhs(self, tau: np.ndarray, Y: np.ndarray, p: np.ndarray) -> np.ndarray:
+        """dY/dtau of the scaled state; Y has shape (6 blocks, m)."""
+        sc = self.scale[:, None]
+        out = np.empty_like(Y)
+        for b, (C, _, linear) in enumerate(self.coefficients(tau, p)):
+            rows = slice(b * NSTATE, (b + 1) * NSTATE)
+            out[rows] = self.terms(Y[rows] * sc, C, linear) / sc
+        return out
+
+    def jac(self, tau: np.ndarray, Y: np.ndarray, p: np.ndarray):
+        """(d rhs/dY, d rhs/dp) with shapes (6b, 6b, m) and (6b, k, m) (None without
+        parameters); the blocks do not interact, so d rhs/dY is block diagonal."""
         sc = self.scale
-        # scaled: dY_i/dtau = L/sc_i f_i(sc * Y)  ->  J_ij * L * sc_j / sc_i
-        J *= L[:, None, None, None] * (sc[None, None, :, None] / sc[None, :, None, None])
-        full = np.zeros((n * NSTATE, n * NSTATE, m))
-        for k in range(n):
-            sl = slice(k * NSTATE, (k + 1) * NSTATE)
-            full[sl, sl] = J[k]
-        if not self.free_first_length:
-            return full, None
-        dp = np.zeros((n * NSTATE, 1, m))
-        f = self.rhs(tau, Y, p)                   # segment k rows = L_k / sc * f
-        dp[:NSTATE, 0] = f[:NSTATE] / L[0] * self.length_scale
-        if self.split_first:                      # L_1 = first length - L_0
-            dp[NSTATE:2 * NSTATE, 0] = -f[NSTATE:2 * NSTATE] / L[1] * self.length_scale
+        nb, m = self.n_block, Y.shape[1]
+        full = np.zeros((nb * NSTATE, nb * NSTATE, m))
+        dp = np.zeros((nb * NSTATE, 1, m)) if self.free_first_length else None
+        ratio = (sc[None, :] / sc[:, None])[:, :, None]      # J_ij sc_j / sc_i
+        for b, (C, dC, linear) in enumerate(self.coefficients(tau, p)):
+            rows = slice(b * NSTATE, (b + 1) * NSTATE)
+            u = Y[rows] * sc[:, None]
+            full[rows, rows] = self.terms_jac(u, C, linear) * ratio
+            if dp is not None:
+                dp[rows, 0] = self.terms(u, dC, linear) / sc[:, None]
         return full, dp

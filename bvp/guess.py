@@ -2,11 +2,12 @@
 
 Every guess returns the catenary's horizontal tension H [N], the vertical force V0 [N] at
 its start and the suspended segment lengths Ls [m]; :func:`state_guess` samples the
-scaled state of the stacked problem from it. The guesses only need to be close enough for
+scaled state at given arc lengths from it. The guesses only need to be close enough for
 Newton's method. Between two pinned ends the catenary is elastic when the model is
-(Irvine's, exact for EI = 0), so that a taut line, or one as long as its chord, has a
-starting tension that carries its weight; the touchdown forms start from the inextensible
-catenary, and an elastic seabed from the line lying on y = -w/k.
+(Irvine's, exact for EI = 0; :func:`bvp.catenary.pinned` finds it from slack to taut), so
+that a taut line, or one as long as its chord or shorter, has a starting tension that
+carries its weight; the touchdown forms start from the inextensible catenary, and an
+elastic seabed from the line lying on y = -w/k up to the touchdown, in any segment.
 """
 
 from __future__ import annotations
@@ -16,8 +17,7 @@ import math
 import numpy as np
 from scipy.optimize import brentq, least_squares
 
-from .catenary import catenary_state
-from .equations import NSTATE
+from .catenary import catenary_state, pinned
 
 
 class BVPFailure(RuntimeError):
@@ -29,32 +29,25 @@ class NoEquilibrium(BVPFailure):
     starts with 'no equilibrium:')."""
 
 
-def state_guess(tau, w, Ls, EI, H, V0, ox, oy, scale, grounded: float = 0.0,
+def state_guess(s, seg, w, Ls, EI, H, V0, ox, oy, scale, grounded: float = 0.0,
                 sink: float = 0.0, EA=None) -> np.ndarray:
-    """Scaled state (6n, m) at the unit coordinates ``tau`` of each stacked segment: the
-    catenary through (ox, oy) with forces (H, V0) there. With ``grounded`` > 0 [m] the
-    first segment (length Ls[0] + grounded) starts with that much line lying straight at
-    y = oy - sink [m] from x = ox - grounded, tension H, before the catenary. ``EA``
-    (shape (n,), None: inextensible) makes the catenary elastic."""
-    n = len(Ls)
-    Lfull = np.asarray(Ls, float).copy()
-    Lfull[0] += grounded
-    edges = np.concatenate([[0.0], np.cumsum(Lfull)])
-    Y = np.empty((n * NSTATE, tau.size))
-    for k in range(n):
-        s = edges[k] + Lfull[k] * tau - grounded
-        on = s < 0.0
-        st = catenary_state(np.maximum(s, 0.0), w, Ls, H, V0, ox, oy, EA)
-        kap = st["curvature"]
-        M = EI[k] * kap
-        # d(kappa)/ds for kappa = w H / (H^2 + V^2), dV/ds = w
-        F = EI[k] * (-2.0 * w[k] ** 2 * H * st["V"] / (H * H + st["V"] ** 2) ** 2)
-        rows = [np.where(on, ox + s, st["x"]), np.where(on, oy - sink, st["y"]),
-                np.where(on, 0.0, st["theta"]), np.where(on, 0.0, M), np.where(on, 0.0, F),
-                np.where(on, H, st["tension"])]
-        for i, r in enumerate(rows):
-            Y[k * NSTATE + i] = r / scale[i]
-    return Y
+    """Scaled state (6, m) at the unstretched arc lengths ``s`` [m] from the bottom end
+    (``seg``: the segment index at each, for its EI [N m2] and weight w [N/m]): the
+    catenary of suspended segment lengths ``Ls`` [m] through (ox, oy) with forces (H, V0)
+    [N] there. With ``grounded`` > 0 [m] the line first lies straight at y = oy - sink [m]
+    from x = ox - grounded, tension H, for that length before the catenary. ``EA`` (per
+    segment [N], None: inextensible) makes the catenary elastic."""
+    sc = np.asarray(s, float) - grounded
+    on = sc < 0.0
+    st = catenary_state(np.maximum(sc, 0.0), w, Ls, H, V0, ox, oy, EA)
+    EIk, wk = np.asarray(EI, float)[seg], np.asarray(w, float)[seg]
+    M = EIk * st["curvature"]
+    # d(kappa)/ds for kappa = w H / (H^2 + V^2), dV/ds = w
+    F = EIk * (-2.0 * wk ** 2 * H * st["V"] / (H * H + st["V"] ** 2) ** 2)
+    rows = [np.where(on, ox + sc, st["x"]), np.where(on, oy - sink, st["y"]),
+            np.where(on, 0.0, st["theta"]), np.where(on, 0.0, M), np.where(on, 0.0, F),
+            np.where(on, H, st["tension"])]
+    return np.stack([r / scale[i] for i, r in enumerate(rows)])
 
 
 def hang_off_angle(w, L, height, alpha):
@@ -164,52 +157,78 @@ def top_tension_reach(w, L, EA, T_top) -> float:
     return rise * (1.0 + T_top / float(np.min(EA)))
 
 
-def grounded(w, L, dx, dy):
-    """Catenary from a touchdown on the seabed (theta = 0) to a hang-off at (dx, dy) from the
-    anchor, with the grounded length L[0] - l1 straight on the seabed."""
-    def top(H, l1):
-        Ls = L.copy()
-        Ls[0] = l1
-        st = catenary_state(np.array([Ls.sum()]), w, Ls, H, 0.0)
-        return float(st["x"][0]) + (L[0] - l1), float(st["y"][0])
+def suspended_lengths(L, g: float) -> np.ndarray:
+    """Segment lengths [m] left hanging when the first ``g`` metres lie on the seabed."""
+    L = np.asarray(L, float)
+    starts = np.concatenate([[0.0], np.cumsum(L)])[:-1]
+    return np.clip(starts + L - g, 0.0, L)
 
-    def H_for(l1):
-        f = lambda lh: top(math.exp(lh), l1)[1] - dy                # noqa: E731
+
+def grounded(w, L, dx, dy, anywhere: bool = False):
+    """Catenary from a touchdown on the seabed (theta = 0) to a hang-off at (dx, dy) from the
+    anchor, the grounded length straight on the seabed: the touchdown in the first segment,
+    or with ``anywhere`` (an elastic seabed) in a later one if none is found there.
+    Returns (H [N], 0, the suspended segment lengths [m], 0 where a segment lies on the
+    seabed)."""
+    def top(H, Ls):
+        st = catenary_state(np.array([Ls.sum()]), w, Ls, H, 0.0)
+        return float(st["x"][0]) + float(np.sum(L - Ls)), float(st["y"][0])
+
+    def H_for(Ls):
+        f = lambda lh: top(math.exp(lh), Ls)[1] - dy                # noqa: E731
         lo, hi = math.log(1e-6 * np.sum(np.abs(w) * L) + 1e-3), math.log(1e3 * np.sum(np.abs(w) * L) + 1e3)
         if f(lo) * f(hi) > 0:
             return None
         return math.exp(brentq(f, lo, hi, xtol=1e-12))
 
-    def g(l1):
-        H = H_for(l1)
+    def g(Ls):
+        H = H_for(Ls)
         if H is None:
             return None
-        return top(H, l1)[0] - dx
+        return top(H, Ls)[0] - dx
 
-    grid = np.linspace(L[0], 1e-3 * L[0], 80)
-    prev = None
-    for l1 in grid:
-        v = g(l1)
-        if v is None:
-            continue
-        if prev is not None and prev[1] * v <= 0:
-            f = lambda z: g(z) if g(z) is not None else 0.0         # noqa: E731
-            l1s = brentq(f, l1, prev[0], xtol=1e-9 * L[0])
-            Ls = L.copy()
-            Ls[0] = l1s
-            return H_for(l1s), 0.0, Ls
-        prev = (l1, v)
+    def first(l1):
+        Ls = L.copy()
+        Ls[0] = l1
+        return Ls
+
+    def later(gl):                # gl: grounded length beyond the first segment
+        return suspended_lengths(L, gl)
+
+    searches = [(first, np.linspace(L[0], 1e-3 * L[0], 80), 1e-9 * L[0])]
+    if anywhere and len(L) > 1:
+        total = float(np.sum(L))
+        searches.append((later, np.linspace(L[0], total - 1e-3 * L[-1], 80), 1e-9 * total))
+    for lengths, grid, xtol in searches:
+        prev = None
+        for z in grid:
+            v = g(lengths(z))
+            if v is None:
+                continue
+            if prev is not None and prev[1] * v <= 0:
+                def f(q, cut=lengths):
+                    v = g(cut(q))
+                    return v if v is not None else 0.0
+
+                zs = brentq(f, min(z, prev[0]), max(z, prev[0]), xtol=xtol)
+                return H_for(lengths(zs)), 0.0, lengths(zs)
+            prev = (z, v)
     raise BVPFailure(no_touchdown_reason(w, L, dx, dy))
 
 
 def free_hanging(w, L, dx, dy, EA=None):
     """Catenary between two pinned ends (elastic with ``EA`` [N] per segment, else
-    inextensible): unknown H and the vertical force V0 at the anchor."""
+    inextensible): unknown H and the vertical force V0 at the anchor [N]. Bracketed root
+    finds first (:func:`bvp.catenary.pinned`: slack to taut, a line that must stretch
+    included), else a least-squares fit in log H from several starts."""
     W = float(np.sum(np.abs(w) * L)) or 1.0
     total = float(np.sum(w * L))
     if EA is None and float(np.sum(L)) <= math.hypot(dx, dy):
         raise BVPFailure(f"the line is too short: {span_words(L, dx, dy)}, and an "
                          "inextensible line cannot stretch to join them")
+    found = pinned(w, L, dx, dy, EA)
+    if found is not None:
+        return found[0], found[1], np.asarray(L, float).copy()
 
     def resid(z):
         H = math.exp(z[0]) * W

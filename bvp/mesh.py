@@ -1,4 +1,5 @@
-"""Initial collocation mesh on the unit interval of every stacked segment."""
+"""A clustered mesh on the unit interval: the starting mesh of each piece of the line
+(bvp/layout.py) and of the modal analysis's pieces (bvp/modes.py)."""
 
 from __future__ import annotations
 

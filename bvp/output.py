@@ -14,32 +14,96 @@ from .equations import IF, IM, IT, ITH, IX, IY, NSTATE, BeamModel
 from .guess import BVPFailure, touchdown_beyond_first
 
 
+def pieces(model: BeamModel, p: np.ndarray) -> list[dict]:
+    """The solved line bottom first, one dict per piece of constant properties: ``block``
+    (its rows of the state), ``seg`` (the segment), s0/s1 [m] from the bottom end of the
+    solved line, t0/t1 its tau on the block's ``layout``, ``linear`` (the contact zone's
+    spring law)."""
+    out = []
+    blocks = [(model.n_block - 1, model.layout, model.line_segs, model.piece_lengths(p),
+               model.zone_length(p), False)]
+    if model.split_first:
+        blocks.insert(0, (0, model.zone_layout, model.zone_segs, model.zone_lengths(p), 0.0,
+                          True))
+    for block, lay, segs, L, s0, linear in blocks:
+        edges = s0 + np.concatenate([[0.0], np.cumsum(L)])
+        for i, k in enumerate(segs):
+            out.append(dict(block=block, seg=int(k), s0=float(edges[i]), s1=float(edges[i + 1]),
+                            t0=float(lay.edges[i]), t1=float(lay.edges[i + 1]), linear=linear,
+                            layout=lay))
+    return out
+
+
+def _state(layout, sol, tau: np.ndarray) -> np.ndarray:
+    """The scaled solution at tau, where a tau inside a joint's blend gap of ``layout``
+    (a joint station) takes the sharp-joint value: the state at the gap's left node
+    t_j - g continued with its slope there (the left piece's f), exact to O(g^2) where the
+    blended solution inside the gap is O(g) off (bvp/layout.py)."""
+    tau = np.asarray(tau, float)
+    gap = layout.in_gap(tau)
+    if not np.any(gap):
+        return sol.sol(tau)
+    j = layout.edges[1:-1]
+    i = np.clip(np.searchsorted(j, tau[gap]), 1, j.size)
+    lo, hi = j[i - 1], j[np.minimum(i, j.size - 1)]
+    near = np.where(np.abs(tau[gap] - lo) <= np.abs(tau[gap] - hi), lo, hi)
+    left = near - layout.gap
+    Y = sol.sol(tau)
+    Y[:, gap] = sol.sol(left) + (tau[gap] - left) * sol.sol(left, 1)
+    return Y
+
+
+def _with_moment_peaks(layout, sol, tau: np.ndarray, rows: slice) -> np.ndarray:
+    """``tau`` with a station added at every interior extremum of the moment, where the
+    shear F = M' / (1 + eps) changes sign between two stations (its root on the
+    collocation solution), so that a peak moment read off the profile does not depend on
+    where the stations fall (a peak between stations h apart reads low by ~ h^2 M''/8)."""
+    F = _state(layout, sol, tau)[rows][IF]
+    flip = np.flatnonzero(F[:-1] * F[1:] < 0.0)
+    if not flip.size:
+        return tau
+
+    def shear(t):
+        return float(_state(layout, sol, np.array([t]))[rows][IF][0])
+
+    roots = [brentq(shear, tau[i], tau[i + 1], xtol=1e-14) for i in flip]
+    return np.union1d(tau, roots)
+
+
 def build_profile(prob, sol, water_depth: float | None) -> tuple[Profile, dict]:
-    """Profile at stations every sqrt(EI/T)/8 (0.05-0.5 m) plus the collocation nodes,
-    from the bottom end; the checks dict goes into the result's info."""
+    """Profile at stations every sqrt(EI/T)/8 (0.05-0.5 m) plus the collocation nodes (but
+    the node pairs of the joints' blends: a joint is one station, the middle of its pair)
+    and the moment's extrema, from the bottom end; the checks dict goes into the result's
+    info."""
     model = prob.model
     p = sol.p if sol.p is not None else np.zeros(0)
-    Ls = model.segment_lengths(p)
-    n = model.n_seg
+    parts = pieces(model, p)
     EI = model.EI
     Tpeak = max(abs(float(np.max(sol.y[IT::NSTATE]))) * model.scale[IT], 1.0)
     step = float(np.clip(float(np.min(np.sqrt(EI / Tpeak))) / 8.0, 0.05, 0.5))
     cols = {k: [] for k in ("s", "x", "y", "theta", "M", "F", "T", "kappa")}
-    s0 = 0.0
     strain = 0.0
-    grounded = prob.first_total - Ls[0] if prob.form == "fixed_seabed" else 0.0
-    for k in range(n):
-        m = max(20, int(math.ceil(Ls[k] / step)))
-        tau = np.union1d(np.linspace(0.0, 1.0, m + 1), sol.x)
-        if k > 0:
+    grounded = prob.first_total - parts[0]["s1"] if prob.form == "fixed_seabed" else 0.0
+    for i, pc in enumerate(parts):
+        t0, t1, k, lay = pc["t0"], pc["t1"], pc["seg"], pc["layout"]
+        nodes = sol.x[(sol.x > t0) & (sol.x < t1)]
+        nodes = nodes[~lay.in_gap(nodes)]
+        m = max(20, int(math.ceil((pc["s1"] - pc["s0"]) / step)))
+        # the joints inside a piece of merged identical segments are stations too
+        inner = prob.joints[(prob.joints > grounded + pc["s0"]) & (prob.joints < grounded + pc["s1"])]
+        tau = np.union1d(np.linspace(t0, t1, m + 1),
+                         np.concatenate([nodes, t0 + (inner - grounded - pc["s0"])
+                                         / (pc["s1"] - pc["s0"]) * (t1 - t0)]))
+        if i > 0:
             tau = tau[1:]
-        Y = sol.sol(tau)[k * NSTATE:(k + 1) * NSTATE] * model.scale[:, None]
-        cols["s"].append(grounded + s0 + Ls[k] * tau)
-        for key, i in (("x", IX), ("y", IY), ("theta", ITH), ("M", IM), ("F", IF), ("T", IT)):
-            cols[key].append(Y[i])
+        rows = slice(pc["block"] * NSTATE, (pc["block"] + 1) * NSTATE)
+        tau = _with_moment_peaks(lay, sol, tau, rows)
+        Y = _state(lay, sol, tau)[rows] * model.scale[:, None]
+        cols["s"].append(grounded + pc["s0"] + (pc["s1"] - pc["s0"]) * (tau - t0) / (t1 - t0))
+        for key, j in (("x", IX), ("y", IY), ("theta", ITH), ("M", IM), ("F", IF), ("T", IT)):
+            cols[key].append(Y[j])
         cols["kappa"].append(Y[IM] / EI[k])
         strain = max(strain, float(np.max(np.abs(Y[IT]))) * float(model.inv_EA[k]))
-        s0 += Ls[k]
     c = {k: np.concatenate(v) for k, v in cols.items()}
     tdp_s = None
     checks: dict = {"max_strain": strain}
@@ -57,17 +121,21 @@ def build_profile(prob, sol, water_depth: float | None) -> tuple[Profile, dict]:
                 + touchdown_beyond_first(prob.first_total))
     if prob.form == "fixed_seabed" and grounded > 0.0:
         c = _with_grounded_part(prob, model, c, grounded)
-    # joints are evaluated from both sides; drop stations closer than 1 um
+    # drop stations closer than 1 um
     keep = np.concatenate([[True], np.diff(c["s"]) > 1e-6])
     c = {k: v[keep] for k, v in c.items()}
-    checks["first_segment_suspended_length"] = float(Ls[0])
+    # the part of segment 0 beyond the touchdown or lift-off point (0 when the contact
+    # zone covers it); the first piece is segment 0 alone in the forms that solve for it
+    checks["first_segment_suspended_length"] = (
+        max(0.0, prob.first_total - model.zone_length(p)) if model.split_first
+        else float(model.piece_lengths(p)[0]) if model.free_first_length
+        else prob.first_total)
     if prob.form == "fixed_seabed":
         checks["grounded_length"] = float(grounded)
     if prob.form == "fixed_elastic":
-        tdp_s = lift_off(prob, sol, Ls, c)
+        tdp_s = lift_off(prob, sol, p, c)
     if prob.form == "fixed_liftoff":
-        tdp_s = float(Ls[0])
-        checks["first_segment_suspended_length"] = float(Ls[1])
+        tdp_s = model.zone_length(p)
         zone = c["s"] <= tdp_s
         checks["contact_zone_max_height"] = float(np.max(c["y"][zone]))
     if tdp_s is not None and prob.form in ("fixed_elastic", "fixed_liftoff"):
@@ -78,7 +146,7 @@ def build_profile(prob, sol, water_depth: float | None) -> tuple[Profile, dict]:
     if not prof.is_finite():
         raise BVPFailure("solution contains NaN or inf")
     # independent self-checks of the converged solution
-    checks["equilibrium_residual"] = equilibrium_residual(model, Ls, grounded, c)
+    checks["equilibrium_residual"] = equilibrium_residual(model, parts, grounded, c)
     if tdp_s is not None and prob.form not in ("fixed_elastic", "fixed_liftoff"):
         susp = c["s"] > tdp_s + 1e-9
         ymin = float(np.min(c["y"][susp])) if np.any(susp) else 0.0
@@ -122,10 +190,10 @@ def grounded_drag(model: BeamModel) -> float:
     return float(model.c_t[0]) * abs(V0) * V0
 
 
-def lift_off(prob, sol, Ls: np.ndarray, c: dict) -> float | None:
+def lift_off(prob, sol, p: np.ndarray, c: dict) -> float | None:
     """Arc length [m] where the line, in contact (y <= 0) from its bottom end, first rises
     above the seabed: the root of y(s) = 0 on the collocation solution (None when the bottom
-    end is not in contact or the whole line is)."""
+    end is not in contact or the whole line is). One block (the unilateral form)."""
     y = c["y"]
     if y[0] > 1e-9:                  # the anchor sits on y = 0 up to round-off
         return None
@@ -134,38 +202,38 @@ def lift_off(prob, sol, Ls: np.ndarray, c: dict) -> float | None:
         return None
     j = int(up[0]) + 1
     sa, sb = float(c["s"][j - 1]), float(c["s"][j])
-    edges = np.concatenate([[0.0], np.cumsum(Ls)])
-    k = int(np.clip(np.searchsorted(edges, sb, side="left") - 1, 0, len(Ls) - 1))
+    model = prob.model
 
     def height(s):
-        tau = np.array([(s - edges[k]) / Ls[k]])
-        return float(sol.sol(tau)[k * NSTATE + IY][0]) * prob.model.scale[IY]
+        tau = model.tau_of(np.array([s]), p)
+        return float(sol.sol(tau)[IY][0]) * model.scale[IY]
 
     if height(sa) > 0.0 or height(sb) <= 0.0:
         return sa + (0.0 - y[j - 1]) / (y[j] - y[j - 1]) * (sb - sa)
     return brentq(height, sa, sb, xtol=1e-9)
 
 
-def equilibrium_residual(model: BeamModel, Ls: np.ndarray, grounded: float, c: dict) -> float:
+def equilibrium_residual(model: BeamModel, parts: list, grounded: float, c: dict) -> float:
     """|P(top) - P(bottom) + integral of the external load| / max tension over the solved
     line (the rigid form's grounded part excluded), where the internal force is
     P = T t - F n, t = (cos, sin), n = (-sin, cos), and weight, drag and seabed reaction
-    are integrated over the unstretched arc length by the trapezoidal rule (an independent
-    check of the collocation solution: O(ds^2) quadrature error)."""
+    are integrated over the unstretched arc length by the trapezoidal rule, piece by piece
+    (``parts``: bvp.output.pieces; an independent check of the collocation solution:
+    O(ds^2) quadrature error)."""
     def force(i):
         th = c["theta"][i]
         return c["T"][i] * np.array([np.cos(th), np.sin(th)]) - c["F"][i] * np.array(
             [-np.sin(th), np.cos(th)])
 
-    edges = grounded + np.concatenate([[0.0], np.cumsum(Ls)])
     res = np.zeros(2)
-    for k in range(len(Ls)):       # segment by segment: the weight jumps at the joints
-        sel = (c["s"] >= edges[k] - 1e-6) & (c["s"] <= edges[k + 1] + 1e-6)
+    for pc in parts:              # piece by piece: the weight jumps at the joints
+        k = pc["seg"]
+        sel = (c["s"] >= grounded + pc["s0"] - 1e-6) & (c["s"] <= grounded + pc["s1"] + 1e-6)
         s, y, th = c["s"][sel], c["y"][sel], c["theta"][sel]
         t = np.stack([np.cos(th), np.sin(th)])
         nrm = np.stack([-np.sin(th), np.cos(th)])
         load = np.stack([np.zeros_like(s), -model.w[k]
-                         + model.seabed_reaction(y, model.linear_zone[k])])
+                         + model.seabed_reaction(y, pc["linear"])])
         if model.speed is not None:
             V = model.drag_factor * model.speed(y)
             Vn = -V * np.sin(th)

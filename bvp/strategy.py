@@ -1,13 +1,14 @@
 """How the BVP is solved: a cold start from the catenary, and if that fails a continuation
-in a load factor that scales the current speed and the buoyancy (``solve_bvp`` calls with
-a trial node cap; the full cap only where the problem is genuinely fine); and when it is
-not started at all (:func:`hopeless_span`, :func:`hopeless_start`: milliseconds, where a
+in a load factor that scales the current speed and the buoyancy, then (unilateral elastic
+seabed) in the seabed stiffness (``solve_bvp`` calls with a trial node cap; the full cap
+only where the problem is genuinely fine); and when it is not started at all (:func:`hopeless_span`, :func:`hopeless_start`: milliseconds, where a
 hopeless ``solve_bvp`` run costs up to a minute or more)."""
 
 from __future__ import annotations
 
 import math
 import warnings
+from types import SimpleNamespace
 
 import numpy as np
 from scipy.integrate import solve_bvp
@@ -17,9 +18,15 @@ from riser.scene import FixedEnds, Scene, TopTensionEnds
 from riser.sections import segment_properties
 from riser.settings import BVPSettings
 
-from .equations import IT, IY, NSTATE
-from .guess import (fold_back, metres, span_words, too_long_for_seabed, top_tension_reach,
-                    touchdown_beyond_first)
+from .equations import IT, IY, NSTATE, LiftOffOutside
+from .guess import (
+    fold_back,
+    metres,
+    span_words,
+    too_long_for_seabed,
+    top_tension_reach,
+    touchdown_beyond_first,
+)
 
 
 def _run(prob, tau: np.ndarray, Y: np.ndarray, p: np.ndarray, settings: BVPSettings):
@@ -27,25 +34,39 @@ def _run(prob, tau: np.ndarray, Y: np.ndarray, p: np.ndarray, settings: BVPSetti
     kw = dict(tol=settings.tolerance, max_nodes=settings.max_nodes)
     with warnings.catch_warnings(), np.errstate(all="ignore"):
         warnings.simplefilter("ignore")
-        if p.size:
-            return solve_bvp(model.rhs, prob.bc, tau, Y, p=p, fun_jac=model.jac, **kw)
-        return solve_bvp(lambda t, y: model.rhs(t, y, p), prob.bc, tau, Y,
-                         fun_jac=lambda t, y: model.jac(t, y, p)[0], **kw)
+        try:
+            if p.size:
+                return solve_bvp(model.rhs, prob.bc, tau, Y, p=p, fun_jac=model.jac, **kw)
+            return solve_bvp(lambda t, y: model.rhs(t, y, p), prob.bc, tau, Y,
+                             fun_jac=lambda t, y: model.jac(t, y, p)[0], **kw)
+        except LiftOffOutside as exc:
+            # stopped at once: the Newton iterate left the form (bvp/equations.py)
+            return SimpleNamespace(success=False, status=3, message=str(exc), x=tau, y=Y,
+                                   p=p, niter=0, sol=None, rms_residuals=None)
 
 
-TRIAL_MAX_NODES = 8000   # node cap for cold starts and continuation steps (a failing
-                         # attempt at the full cap costs ~40 s; converged Wang runs use ~1k)
+TRIAL_MAX_NODES = 8000   # node cap for cold starts and continuation steps (converged
+                         # built-in scenes use 0.8k-4.4k nodes; a failing attempt costs
+                         # ~0.1 ms a node and iteration, 1-5 s at the full cap)
 
 
 def solve_with_continuation(prob, tau0: np.ndarray, settings: BVPSettings,
                              continuation: bool):
-    """Cold start from the catenary; if that fails, walk a load factor lam from 0 to 1
-    that scales the current speed and the buoyancy (negative weights).
+    """Cold start from the catenary; if that fails, walk a parameter lam from 0 to 1:
+    first a load factor that scales the current speed and the buoyancy (negative
+    weights), then, on an elastic seabed solved with the unilateral law everywhere
+    (``fixed_elastic``), the seabed stiffness from none (the free-hanging catenary, exact
+    for EI = 0) up to the scene's (:func:`_seabed_stiffness`): a start that dips far below
+    the seabed (a taut line that stretches onto it, an anchor above the seabed) meets a
+    stiff foundation otherwise, and the Newton iteration fails ('singular Jacobian').
 
     Returns (solution or None, description of what was tried, failure status): the status
-    is :attr:`Status.NO_EQUILIBRIUM` when the continuation stalled with the tension driven
-    to zero, else :attr:`Status.NOT_CONVERGED` (meaningful only for a failed solution)."""
-    trial = settings.replace(max_nodes=min(settings.max_nodes, TRIAL_MAX_NODES))
+    is :attr:`Status.NO_EQUILIBRIUM` when the load continuation stalled with the tension
+    driven to zero, else :attr:`Status.NOT_CONVERGED` (meaningful only for a failed
+    solution)."""
+    # the trial cap leaves room to refine a starting mesh of many pieces
+    trial = settings.replace(max_nodes=min(settings.max_nodes,
+                                           max(TRIAL_MAX_NODES, 2 * tau0.size)))
     fail = Status.NOT_CONVERGED
     Y0 = prob.guess(tau0)
     sol = _run(prob, tau0, Y0, prob.guess_p, trial)
@@ -61,23 +82,68 @@ def solve_with_continuation(prob, tau0: np.ndarray, settings: BVPSettings,
                      f"tolerance {settings.tolerance:g}; raise [bvp] max_nodes"), fail
     if not continuation:
         return sol, "cold start only", fail
-    model = prob.model
-    w_target = model.w.copy()
-    has_current = model.speed is not None
-    has_buoy = bool(np.any(w_target < 0))
-    if not (has_current or has_buoy):
+    walks = [w for w in (_load_factor(prob.model), _seabed_stiffness(prob)) if w is not None]
+    if not walks:
         return sol, "cold start (no continuation parameter)", fail
+    tried = []
+    for walk in walks:
+        cand, how, fail = _walk(prob, tau0, Y0, trial, settings, *walk)
+        if cand is not None and good(cand, prob):
+            return cand, "; ".join(tried + [how]), fail
+        tried.append(how)
+        sol = cand if cand is not None else sol
+    return sol, "; ".join(tried), fail
+
+
+def _load_factor(model):
+    """(name, set_lam, where, largest step) of the continuation in current and buoyancy
+    (``where(lam)`` says how far it went), None without either."""
+    w_target = model.w.copy()
+    if model.speed is None and not np.any(w_target < 0):
+        return None
 
     def set_lam(lam):
         model.drag_factor = lam
         model.w = np.where(w_target < 0, lam * w_target, w_target)
 
+    return "current/buoyancy", set_lam, lambda lam: f"load factor {lam:.3f}", 0.5
+
+
+#: decades of seabed stiffness the continuation climbs after the first step from none
+SEABED_DECADES = 8.0
+
+
+def _seabed_stiffness(prob):
+    """(name, set_lam, where, largest step) of the continuation in the seabed stiffness, k = 0 at lam = 0 and
+    k 10^(-SEABED_DECADES (1 - lam)) above it (the foundation's stiffness spans decades:
+    the sink depth w/k goes from metres to 0.1 mm), for the unilateral form only (the
+    contact-zone form assumes contact from the anchor); None otherwise."""
+    model = prob.model
+    if prob.form != "fixed_elastic" or model.k_seabed <= 0.0:
+        return None
+    k_target = model.k_seabed
+
+    def k_of(lam):
+        return 0.0 if lam <= 0.0 else k_target * 10.0 ** (-SEABED_DECADES * (1.0 - lam))
+
+    def set_lam(lam):
+        model.k_seabed = k_of(lam)
+
+    return "seabed stiffness", set_lam, lambda lam: (f"k = {k_of(lam):.3g} N/m2 of "
+                                                     f"{k_target:.3g}"), 0.25
+
+
+def _walk(prob, tau0, Y0, trial, settings, name, set_lam, where, max_step):
+    """Walk lam from 0 to 1 with steps that grow on success (up to ``max_step``: 2
+    decades of seabed stiffness, a failed step costs up to 5 s) and halve on failure;
+    returns (solution at lam = 1 or the last candidate, what was done, status)."""
+    model = prob.model
+    fail = Status.NOT_CONVERGED
     set_lam(0.0)
     base = _run(prob, tau0, Y0, prob.guess_p, trial)
     if not good(base, prob):
         set_lam(1.0)
-        return base, ("continuation failed: no solution even without current and "
-                      "buoyancy"), fail
+        return base, f"continuation in {name} failed: no solution at its start", fail
     lam, step, last = 0.0, 0.25, base
     while lam < 1.0:
         target = min(1.0, lam + step)
@@ -86,34 +152,38 @@ def solve_with_continuation(prob, tau0: np.ndarray, settings: BVPSettings,
                     trial)
         if good(cand, prob):
             lam, last = target, cand
-            step = min(step * 1.5, 0.5)
-        else:
-            step /= 2.0
-            if step < 1.0 / 128:
-                set_lam(1.0)
-                Tmin = float(np.min(last.y[IT::NSTATE])) * model.scale[IT]
-                Tmax = float(np.max(last.y[IT::NSTATE])) * model.scale[IT]
-                why = (f"minimum tension there {Tmin / 1e3:.3g} kN of max {Tmax / 1e3:.3g} kN")
-                if Tmin < 0.05 * Tmax:
-                    why += (": the tension tends to zero, so probably no static equilibrium "
-                            "of this form exists at the full load")
-                    fail = Status.NO_EQUILIBRIUM
-                return cand, (f"continuation in current/buoyancy stalled at load factor "
-                              f"{lam:.3f}, {why}"), fail
+            step = min(step * 1.5, max_step)
+            continue
+        step /= 2.0
+        if step < 1.0 / 128:
+            set_lam(1.0)
+            Tmin = float(np.min(last.y[IT::NSTATE])) * model.scale[IT]
+            Tmax = float(np.max(last.y[IT::NSTATE])) * model.scale[IT]
+            why = (f"minimum tension there {Tmin / 1e3:.3g} kN of max {Tmax / 1e3:.3g} kN")
+            if Tmin < 0.05 * Tmax and name == "current/buoyancy":
+                why += (": the tension tends to zero, so probably no static equilibrium "
+                        "of this form exists at the full load")
+                fail = Status.NO_EQUILIBRIUM
+            return cand, f"continuation in {name} stalled at {where(lam)}, {why}", fail
     set_lam(1.0)
     if last.x.size >= trial.max_nodes:
         last = _run(prob, last.x, last.y, last.p if last.p is not None else prob.guess_p,
                     settings)
-    return last, "continuation in current and buoyancy", fail
+    return last, f"continuation in {name.replace('/', ' and ')}", fail
 
 
 def good(sol, prob) -> bool:
     if not sol.success or not np.all(np.isfinite(sol.y)):
         return False
-    if prob.form in ("hang_off_angle", "top_tension", "fixed_seabed", "fixed_liftoff"):
+    m = prob.model
+    if prob.form == "fixed_liftoff":
+        # the lift-off point inside the segment its pieces were cut in
+        s_L = sol.p[0] * m.length_scale
+        return bool(m.starts[m.cut] < s_L < m.starts[m.cut + 1])
+    if prob.form in ("hang_off_angle", "top_tension", "fixed_seabed"):
         # the forms (b) and J-lay may solve more than the file's first segment: the solver
         # says so (a warning, or no_equilibrium for the J-lay form)
-        l1 = sol.p[0] * prob.model.length_scale
+        l1 = sol.p[0] * m.length_scale
         free = prob.form in ("hang_off_angle", "top_tension")
         if l1 <= 0.0 or (not free and l1 > prob.first_total * (1 + 1e-9)):
             return False
@@ -185,22 +255,22 @@ def hopeless_start(scene: Scene, prob, tau: np.ndarray) -> tuple[Status, str] | 
       vfife`` finds).
     """
     m = prob.model
-    y = prob.guess(tau)[IY::NSTATE] * m.scale[IY]          # (stacked segments, nodes) [m]
-    L = m.segment_lengths(prob.guess_p)
-    edges = np.concatenate([[0.0], np.cumsum(L)])
+    y = prob.guess(tau)[IY::NSTATE] * m.scale[IY]          # (blocks, nodes) [m]
+    S = m.s_of(tau, prob.guess_p)                           # their arc lengths [m]
     if prob.form == "fixed_free":
         # a line no seabed could hold either (too long for the span); a shorter one that
         # dips below y = 0 is solved and warned about (below_seabed, riser.validity)
         (xa, ya), (xh, yh) = ends = scene.ends.anchor, scene.ends.hang_off
+        L = m.piece_lengths(prob.guess_p)
         if not too_long_for_seabed(m.w, L, *ends):
             return None
-        k, j = np.unravel_index(int(np.argmin(y)), y.shape)
+        i = np.unravel_index(int(np.argmin(y)), y.shape)
         why = ("the scene has no [seabed]" if scene.seabed is None else
                "the rigid seabed holds a line only with the anchor on it (y = 0)")
         return Status.NO_EQUILIBRIUM, (
             f"the line is too long for the span: {span_words(L, xh - xa, yh - ya)}; as a free "
-            f"catenary it hangs to y = {metres(float(y[k, j]))} (at s = "
-            f"{metres(edges[k] + L[k] * tau[j])}), below the seabed y = 0 (this form has no "
+            f"catenary it hangs to y = {metres(float(y[i]))} (at s = "
+            f"{metres(float(S[i]))}), below the seabed y = 0 (this form has no "
             f"seabed contact: {why}), and on a seabed {fold_back(float(np.sum(L)), *ends)}: "
             "no static equilibrium of this form; shorten the line or move the hang-off away "
             "from the anchor")
@@ -226,14 +296,15 @@ def hopeless_start(scene: Scene, prob, tau: np.ndarray) -> tuple[Status, str] | 
 
 def second_contact(prob, tau: np.ndarray, y: np.ndarray | None = None) -> tuple[float, float]:
     """(depth [m], arc length s [m]) of the deepest point of the starting catenary below
-    the seabed beyond the stacked segment(s) of the bottom contact; (0, nan) if none.
-    ``y``: the guess's heights (stacked segments, nodes) [m] if already sampled."""
+    the seabed beyond the first segment (and the contact zone) of the bottom contact;
+    (0, nan) if none. ``y``: the guess's heights (blocks, nodes) [m] if already sampled."""
     m = prob.model
     if y is None:
         y = prob.guess(tau)[IY::NSTATE] * m.scale[IY]
-    first = 2 if m.split_first else 1                       # skip the contact zone's piece(s)
-    if y.shape[0] <= first or float(np.min(y[first:])) >= 0.0:
+    S = m.s_of(tau, prob.guess_p)
+    first_end = m.zone_length(prob.guess_p) + m.piece_lengths(prob.guess_p)[0]
+    beyond = S > first_end + 1e-9 * m.length_scale
+    if not np.any(beyond) or float(np.min(y[beyond])) >= 0.0:
         return 0.0, math.nan
-    L = m.segment_lengths(prob.guess_p)
-    k, j = np.unravel_index(int(np.argmin(y[first:])), y[first:].shape)
-    return -float(y[first + k, j]), float(np.sum(L[:first + k]) + L[first + k] * tau[j])
+    i = int(np.argmin(np.where(beyond, y, np.inf)))
+    return -float(y.flat[i]), float(S.flat[i])

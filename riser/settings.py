@@ -43,7 +43,12 @@ class BVPSettings(_Settings):
     max_nodes: int = spec(30000, "integer", ge=100, le=1_000_000,
                            doc="largest mesh solve_bvp may refine to")
     initial_nodes: int = spec(400, "integer", ge=20, le=100_000,
-                               doc="nodes of the starting mesh (clustered at the ends)")
+                               doc="nodes of the starting mesh on the line (shared by "
+                                   "length, at least 8 a segment, clustered at its ends)")
+    memory_budget: float = spec(2.0, gt=0.0, le=1.0e4, unit="GB",
+                                 doc="largest memory solve_bvp may take, estimated at "
+                                     "max_nodes before solving: a larger problem is "
+                                     "refused")
 
 
 @dataclass(frozen=True)
@@ -103,6 +108,12 @@ class VFIFESettings(_Settings):
     creep_tolerance: float = spec(1.0e-5, table=EXPERT, ge=0.0, le=1.0,
                                    doc="remaining-displacement tolerance, fraction of the "
                                        "line length (0 turns the creep test off)")
+    tension_tolerance: float = spec(1.0e-5, table=EXPERT, ge=0.0, le=1.0,
+                                     doc="change still to come of every element tension, "
+                                         "fraction of the largest (0 turns the test off)")
+    moment_tolerance: float = spec(5.0e-4, table=EXPERT, ge=0.0, le=1.0,
+                                    doc="change still to come of every element end moment, "
+                                        "fraction of the largest (0 turns the test off)")
     static_axial_damping: float = spec(0.1, table=EXPERT, ge=0.0, le=100.0,
                                         doc="axial dashpot, fraction of critical at the "
                                             "highest axial frequency (0: off)")

@@ -4,7 +4,7 @@ right-hand side (``BeamModel.rhs``): d rhs/dY and d rhs/dp, for every kind of te
 solve_bvp takes ``jac`` on trust: a wrong entry does not give a wrong solution (the
 residual is the rhs's), but slow or failed Newton iterations, i.e. spurious "did not
 converge" results. So each term is checked here, in the model the solver builds
-(``bvp.solver._build_problem``) for built-in scenes:
+(``bvp.problem.build_problem``) for built-in scenes:
 
 - (a) the inextensible Wang form without current (and the extensible one);
 - (b) Morison drag, planar: a uniform current, a sheared one (dV/dy) and one that
@@ -13,12 +13,16 @@ converge" results. So each term is checked here, in the model the solver builds
   (y < 0) and nodes above it;
 - (d) the free-length parameter p (the d rhs/dp block): the hang-off-angle form, the
   rigid seabed with the anchor on it, the contact-zone split;
-- (e) the contact-zone split form (linear spring in stacked segment 0, the lift-off
-  point s_L = p entering segments 0 and 1 with opposite signs).
+- (e) the contact-zone split form (linear spring in block 0, the lift-off point s_L = p
+  entering the zone block and the line block's first piece with opposite signs);
+- (f) the joints' blends (bvp/layout.py): nodes inside every gap and at its two ends,
+  where the coefficients of two pieces mix, and d rhs/dp where piece 0 mixes with
+  piece 1.
 
-The state: the solver's own starting guess on 24 nodes of each stacked segment,
-perturbed (fixed seed) by 1 % of each state component's RMS, so that no entry is
-trivially zero (the guess has theta = M = F = 0 on the seabed), the heights by 1 % of
+The state: the solver's own starting guess on 24 nodes of each piece of the line plus five
+in every joint's gap (t_j - g, - g/2, 0, + 0.3 g, + g), perturbed (fixed seed) by 1 % of
+each state component's RMS, so that no entry is trivially zero (the guess has
+theta = M = F = 0 on the seabed), the heights by 1 % of
 themselves (the line lying on the seabed, y = -w/k ~ -4 mm, stays in contact) and the free
 length(s) by 1 %. The rhs is smooth except at a few kinks where the analytic Jacobian is one
 branch's (bvp/equations.py): the unilateral reaction k max(-y, 0) at y = 0, the
@@ -29,13 +33,13 @@ a kink measures an average of two branches (an O(1) mismatch at y = 0, see
 is moved two difference steps away from every kink (``_away_from_kinks``); nowhere else.
 
 Tolerance. Each column j is differenced with the step h_j = 1e-6 max(1, |Y_j|) (the state
-is scaled to O(1), bvp/solver.py). Central differences err by h^2/6 |f'''| (truncation,
+is scaled to O(1), bvp/problem.py). Central differences err by h^2/6 |f'''| (truncation,
 ~2e-13 relative for terms that vary on O(1) scales of the scaled state: trigonometric,
 polynomial, piecewise-linear V) plus ~eps |terms of f_i| / h (round-off, eps/h = 2.2e-10
 relative to the size of the terms summed in f_i, which can cancel). So the discrepancy of
 entry (i, j) is measured relative to |J_ij| + S_i / max(1, |Y_j|), with S_i the size of the
 terms of f_i (|f_i| + sum_j |J_ij Y_j|, a term linear in Y_j being J_ij Y_j), and must be
-at most TOL = 1e-7: 250x the measured worst case (4e-10), while a wrong or missing term
+at most TOL = 1e-7: 380x the measured worst case (2.6e-10), while a wrong or missing term
 is an O(1e-4 .. 1) discrepancy (the negative controls below measure each term's size on
 this scale).
 """
@@ -48,8 +52,8 @@ import functools
 import numpy as np
 import pytest
 
-from bvp.equations import ITH, IY, NSTATE
-from bvp.solver import _build_problem
+from bvp.equations import IF, ITH, IY, NSTATE
+from bvp.problem import build_problem
 from riser.scene import FixedEnds, HangOffAngleEnds, Seabed
 from verification.catalog import resolve
 
@@ -81,28 +85,29 @@ def _wang_rigid_seabed():
 # id -> (scene builder, split, features the built model must have). The features are
 # asserted, so that a change of the problem set-up cannot quietly drop a term from the check.
 CASES = {
-    "wang-inextensible": (lambda: resolve("wang2014-baseline"), True, set()),
+    "wang-inextensible": (lambda: resolve("wang2014-baseline"), True, {"joints"}),
     "wang-extensible": (lambda: resolve("wang2014-baseline").replace(
-        model={"axial": "extensible"}), True, {"extensible"}),
-    "wang-current-1p5": (lambda: resolve("wang2014-current-1p5"), True, {"drag"}),
+        model={"axial": "extensible"}), True, {"extensible", "joints"}),
+    "wang-current-1p5": (lambda: resolve("wang2014-current-1p5"), True, {"drag", "joints"}),
     "wang-hang-off-angle": (lambda: _wang_hang_off_angle("wang2014-baseline"), True,
-                            {"free_length"}),
+                            {"free_length", "joints"}),
     "wang-current-hang-off-angle": (lambda: _wang_hang_off_angle("wang2014-current-1p5"),
-                                    True, {"drag", "free_length"}),
-    "wang-rigid-seabed-anchor": (_wang_rigid_seabed, True, {"free_length"}),
+                                    True, {"drag", "free_length", "joints"}),
+    "wang-rigid-seabed-anchor": (_wang_rigid_seabed, True, {"free_length", "joints"}),
     "yu2021-a2-sheared-unilateral": (lambda: resolve("yu2021-a2-sheared"), False,
-                                     {"extensible", "drag", "shear", "seabed"}),
+                                     {"extensible", "drag", "shear", "seabed", "joints"}),
     "yu2021-a2-sheared-contact-zone": (lambda: resolve("yu2021-a2-sheared"), True,
                                        {"extensible", "drag", "shear", "seabed",
-                                        "free_length", "split"}),
-    "yu2021-a3-unilateral": (lambda: resolve("yu2021-a3"), False, {"extensible", "seabed"}),
+                                        "free_length", "split", "joints"}),
+    "yu2021-a3-unilateral": (lambda: resolve("yu2021-a3"), False,
+                             {"extensible", "seabed", "joints"}),
     "yu2021-a3-contact-zone": (lambda: resolve("yu2021-a3"), True,
-                               {"extensible", "seabed", "free_length", "split"}),
+                               {"extensible", "seabed", "free_length", "split", "joints"}),
     "scr-steel-unilateral": (lambda: resolve("scr-steel"), False, {"extensible", "seabed"}),
     "scr-steel-contact-zone": (lambda: resolve("scr-steel"), True,
                                {"extensible", "seabed", "free_length", "split"}),
     "current-reversing-unilateral": (lambda: resolve("hard-current-reversing"), False,
-                                     {"extensible", "drag", "shear", "seabed"}),
+                                     {"extensible", "drag", "shear", "seabed", "joints"}),
 }
 
 
@@ -120,13 +125,16 @@ def _features(model) -> set[str]:
         out.add("free_length")
     if model.split_first:
         out.add("split")
+    if model.layout.n > 1:
+        out.add("joints")
     return out
 
 
-def _kink_heights(scene, model) -> np.ndarray:
-    """Heights y [m] where the rhs has a kink: the seabed (y = 0), the given heights of a
-    piecewise-linear current (where dV/dy jumps) and those where V changes sign."""
-    ys = [0.0] if model.k_seabed > 0.0 else []
+def _kink_heights(scene, model) -> tuple[np.ndarray, np.ndarray]:
+    """Heights y [m] where the rhs has a kink: (the seabed's, y = 0, in the unilateral
+    block; the current's: the given heights of a piecewise-linear current, where dV/dy
+    jumps, and those where V changes sign, in every block)."""
+    ys = []
     cur = scene.current
     if cur is not None and len(cur.heights) > 1:
         h, v = np.asarray(cur.heights, float), np.asarray(cur.speeds, float)
@@ -134,13 +142,13 @@ def _kink_heights(scene, model) -> np.ndarray:
         for a, b, va, vb in zip(h, h[1:], v, v[1:]):
             if va * vb < 0.0:
                 ys.append(a - va * (b - a) / (vb - va))
-    return np.asarray(ys)
+    return np.asarray([0.0] if model.k_seabed > 0.0 else []), np.asarray(ys)
 
 
-def _away_from_kinks(Y, model, heights):
+def _away_from_kinks(Y, model, kinks):
     """Move y and theta at least KINK_STEPS difference steps away from every kink (in the
-    unilateral segments: the contact zone of the split form is linear in y)."""
-    n, m = model.n_seg, Y.shape[1]
+    unilateral block: the contact zone of the split form is linear in y)."""
+    n, m = model.n_block, Y.shape[1]
     u = Y.reshape(n, NSTATE, m)          # a view: edits Y
 
     def push(row, kinks):
@@ -151,11 +159,20 @@ def _away_from_kinks(Y, model, heights):
             row[close] = kink + np.where(d[close] >= 0.0, 1.0, -1.0) * margin[close]
 
     for k in range(n):
-        ks = heights if model.linear_zone[k] == 0.0 else heights[heights != 0.0]
+        zone = model.split_first and k == 0
+        ks = kinks[1] if zone else np.concatenate(kinks)
         push(u[k, IY], ks / model.scale[IY])
         if model.speed is not None:      # V_n = -V sin(theta), V_t = V cos(theta)
             push(u[k, ITH], np.arange(-4, 5) * (np.pi / 2))
     return Y
+
+
+def _gap_nodes(model) -> np.ndarray:
+    """Five nodes in each joint's blend gap: its two ends, inside it and its middle."""
+    lay = model.layout
+    g = lay.gap
+    return np.concatenate([t + g * np.array([-1.0, -0.5, 0.0, 0.3, 1.0])
+                           for t in lay.edges[1:-1]]) if lay.n > 1 else np.zeros(0)
 
 
 @functools.lru_cache(maxsize=None)
@@ -163,18 +180,21 @@ def _case(case_id):
     """(scene, problem, tau, Y, p): the perturbed starting guess of the case."""
     build, split, _ = CASES[case_id]
     scene = build()
-    prob = _build_problem(scene, split)
+    prob = build_problem(scene, split)
     model = prob.model
     rng = np.random.default_rng(20240611)
-    tau = np.linspace(0.0, 1.0, NODES)
-    u = prob.guess(tau).reshape(model.n_seg, NSTATE, NODES)
+    e = model.layout.edges
+    tau = np.union1d(np.concatenate([np.linspace(a, b, NODES) for a, b in zip(e, e[1:])]),
+                     _gap_nodes(model))
+    m = tau.size
+    u = prob.guess(tau).reshape(model.n_block, NSTATE, m)
     rms = np.sqrt(np.mean(u ** 2, axis=(0, 2)))
     noise = rng.standard_normal(u.shape)
     v = u + 1e-2 * rms[None, :, None] * noise
     # heights relative to themselves: the line lying on the seabed (y = -w/k, mm) stays in
     # contact, the suspended part above it
     v[:, IY] = u[:, IY] * (1.0 + 1e-2 * noise[:, IY])
-    Y = v.reshape(-1, NODES)
+    Y = v.reshape(-1, m)
     Y = _away_from_kinks(Y, model, _kink_heights(scene, model))
     p = prob.guess_p * (1.0 + 1e-2 * rng.standard_normal(prob.guess_p.shape))
     return scene, prob, tau, Y, p
@@ -230,30 +250,49 @@ def _check(model, tau, Y, p, jac_model=None):
 # ------------------------------------------------------------------ the checks
 @pytest.mark.parametrize("case_id", list(CASES))
 def test_analytic_jacobian_matches_central_differences(case_id):
-    # measured (seed above): dY 8e-11 .. 4e-10, dp 8e-12 .. 5e-11 (TOL 1e-7)
+    # measured (seed above): dY 8e-11 .. 1.4e-10, dp 4e-11 .. 2.6e-10 (TOL 1e-7)
     _, prob, tau, Y, p = _case(case_id)
     model = prob.model
     assert _features(model) == CASES[case_id][2]
+    m = tau.size
     if model.k_seabed > 0.0:
         # both branches of the unilateral law are exercised (nodes in contact and above the
         # seabed), or in the split form the linear spring in the contact zone, below y = 0
-        y = Y.reshape(model.n_seg, NSTATE, -1)[:, IY] * model.scale[IY]
-        zone, rest = y[model.linear_zone > 0.0], y[model.linear_zone == 0.0]
+        y = Y.reshape(model.n_block, NSTATE, -1)[:, IY] * model.scale[IY]
+        zone, rest = y[:1] if model.split_first else y[:0], y[-1:]
         assert np.sum(rest > 0.0) >= 3
         if model.split_first:
-            assert np.sum(zone < 0.0) >= NODES - 1          # y(s_L) = 0 is the guess's
+            assert np.sum(zone < 0.0) >= m - 1              # y(s_L) = 0 is the guess's
         else:
             assert np.sum(rest < 0.0) >= 3, np.sum(rest < 0.0)
     d_y, d_p = _check(model, tau, Y, p)
     assert d_y <= TOL, d_y
     assert d_p <= TOL, d_p
-    J, P = model.jac(tau, Y, p)
+    _, P = model.jac(tau, Y, p)
     assert (P is not None) == model.free_first_length
+    lay = model.layout
+    if lay.n > 1:
+        # the gap nodes see blended coefficients: at a joint's middle they are the mean of
+        # the two pieces' (a check at the gaps that ran on pure coefficients would not
+        # test the blend)
+        C = model.coefficients(tau, p)[-1][0]
+        for j, t in enumerate(lay.edges[1:-1]):
+            i = int(np.argmin(np.abs(tau - t)))
+            left, right = (model.coefficients(np.array([t - 2 * lay.gap, t + 2 * lay.gap]),
+                                              p)[-1][0]).T
+            assert np.allclose(C[:, i], 0.5 * (left + right), rtol=1e-9, atol=0.0)
+    if model.free_first_length:
+        # d rhs/dp: nonzero on piece 0 and in the gap of joint 1, zero beyond it
+        line = P[(model.n_block - 1) * NSTATE:, 0]
+        t1 = lay.edges[1]
+        assert np.all(line[:, tau >= t1 + lay.gap] == 0.0)
+        assert np.any(line[:, tau < t1] != 0.0)
+        if lay.n > 1:
+            assert np.any(line[:, (tau > t1 - lay.gap) & (tau < t1 + lay.gap)] != 0.0)
     if model.split_first:
         # the lift-off point moves the end of the contact zone and the start of the rest
-        # of the first segment: both blocks are nonzero, with opposite signs
+        # of the first segment: both blocks are nonzero
         assert np.any(P[:NSTATE] != 0.0) and np.any(P[NSTATE:2 * NSTATE] != 0.0)
-        assert np.all(P[2 * NSTATE:] == 0.0)
 
 
 # Negative controls: the same comparison must fail when a term is left out of the analytic
@@ -268,7 +307,8 @@ def _without(model, feature):
     if feature == "seabed":
         return dataclasses.replace(model, k_seabed=0.0)
     if feature == "extensible":
-        return dataclasses.replace(model, EA=np.full(model.n_seg, np.inf))
+        return dataclasses.replace(model, EA=np.full(model.n_seg, np.inf),
+                                   layout=model.layout)
     raise AssertionError(feature)
 
 
@@ -308,13 +348,34 @@ def test_one_wrong_entry_is_detected():
     J_fd, P_fd = central_differences(model, tau, Y, p)
     f = model.rhs(tau, Y, p)
     assert discrepancy(J, J_fd, P, P_fd, f, Y, p)[0] <= TOL
-    i, j, node = 2 * NSTATE + 4, 2 * NSTATE + ITH, NODES // 2       # dF'/dtheta, segment 2
+    node = int(np.searchsorted(tau, 0.5 * (model.layout.edges[2] + 1.0)))   # segment 2
     bad = J.copy()
-    bad[i, j, node] *= 1.0 + 1e-5
+    bad[IF, ITH, node] *= 1.0 + 1e-5                                        # dF'/dtheta
     assert 10.0 * TOL < discrepancy(bad, J_fd, P, P_fd, f, Y, p)[0] <= 1e-5
     bad = J.copy()
     bad[0, 0, node] = 1e-5 * np.max(np.abs(J[0, :, node]))
     assert discrepancy(bad, J_fd, P, P_fd, f, Y, p)[0] > 10.0 * TOL
+
+
+@pytest.mark.parametrize("case_id", ["wang-hang-off-angle", "yu2021-a3-contact-zone"])
+def test_a_jacobian_without_the_blend_is_detected(case_id):
+    # the Jacobian of the same pieces with a 1000x narrower gap (so the gap nodes see one
+    # piece's pure coefficients) against the differences of the blended model: the gap
+    # nodes report it; and d rhs/dp left out inside the gap of joint 1 (measured 1.2 and
+    # 5.1, 0.87 and 0.89: O(1), against TOL 1e-7)
+    from bvp.layout import Layout
+    _, prob, tau, Y, p = _case(case_id)
+    model = prob.model
+    lay = model.layout
+    sharp = dataclasses.replace(model, layout=Layout(lay.edges, lay.gap * 1e-3))
+    assert _check(model, tau, Y, p, jac_model=sharp)[0] > 100.0 * TOL
+    J, P = model.jac(tau, Y, p)
+    J_fd, P_fd = central_differences(model, tau, Y, p)
+    f = model.rhs(tau, Y, p)
+    t1 = lay.edges[1]
+    Q = P.copy()
+    Q[:, :, (tau > t1 - lay.gap) & (tau < t1 + lay.gap)] = 0.0
+    assert discrepancy(J, J_fd, Q, P_fd, f, Y, p)[1] > 100.0 * TOL
 
 
 def test_a_stencil_across_the_seabed_kink_is_not_the_jacobian():

@@ -248,3 +248,66 @@ def test_moment_metric_does_not_fill_in_a_zero_crossing():
                        moment=np.abs(m), shear=0 * s, curvature=np.abs(m) / 1e4)
     rows = {r["quantity"]: r for r in agreement(prof(6001), prof(31), depth=100.0)}
     assert rows["moment"]["abs_diff"] < 5.0
+
+
+# ------------------------------------------------------------- features and bending length
+def _crest(kappa: float, tilt: float = 0.0, n: int = 4001) -> Profile:
+    """A 400 m line through a crest of curvature ``kappa`` [1/m] at s = 200 m: theta =
+    -kappa (s - 200) + ``tilt`` [rad] (an angle offset moves the vertex, where theta = 0, by
+    tilt / kappa), positions integrated exactly from theta (straight-line segments of the
+    circular arc's chord directions are not needed: the heights' vertex is where theta
+    crosses zero)."""
+    s = np.linspace(0.0, 400.0, n)
+    th = -kappa * (s - 200.0) + tilt
+    x = np.concatenate([[0.0], np.cumsum(np.diff(s) * np.cos(0.5 * (th[1:] + th[:-1])))])
+    y = 100.0 + np.concatenate([[0.0], np.cumsum(np.diff(s) * np.sin(0.5 * (th[1:] + th[:-1])))])
+    one = np.ones_like(s)
+    return Profile(s=s, x=x, y=y, z=0 * s, theta=th, tension=1000.0 * one,
+                   moment=1.0e3 * kappa * one, shear=0 * one, curvature=kappa * one)
+
+
+@pytest.mark.parametrize("kappa", [1e-2, 1e-3, 1e-4])
+def test_crest_position_tolerance_is_the_angle_over_the_curvature(kappa):
+    # closed form: tilting a crest's angle by d moves its vertex by d / kappa; the position
+    # row's tolerance is max(0.05 m, FEATURE_ANGLE / kappa), so a tilt of 0.9 of the
+    # feature angle passes at any curvature and one of 1.5 of it fails where the angle
+    # term governs (at kappa 1e-2, 1.5 x 0.03 deg / kappa = 0.079 m > 0.05 m: it fails too)
+    from verification.comparison.tolerances import FEATURE_ANGLE_DEG
+    d = np.radians(FEATURE_ANGLE_DEG)
+    ref = _crest(kappa)
+    for factor, passes in ((0.9, True), (1.5, False)):
+        rows = {r["quantity"]: r for r in agreement(ref, _crest(kappa, factor * d), 500.0)}
+        row = rows["crest1_s"]
+        # the vertex moved by the closed form's amount (to the parabola fit of 0.1 m stations)
+        assert row["diff"] == pytest.approx(factor * d / kappa, rel=1e-3)
+        assert row["tolerance"] == pytest.approx(max(0.05, d / kappa), rel=1e-9)
+        assert row["pass"] is passes, (kappa, factor, row)
+
+
+def test_a_moment_the_elements_cannot_resolve_is_shown_not_judged():
+    # a chain-like line: EI 10 N m2 under 1e5 N has a bending length sqrt(EI/T) = 0.01 m,
+    # below a 1 m element: the moment rows are not judged (pass None, the reason noted),
+    # the others still are; a steel pipe's (EI 1e8: 31.6 m) are judged
+    from riser.io.scene_file import scene_from_dict
+    from verification.comparison.agreement import MOMENT_ROWS, unresolved_bending
+    def line(EI):
+        return scene_from_dict({"name": "l", "line_types": {"c": {
+            "outer_diameter": 0.1, "mass_per_length": 10.0, "axial_stiffness": 1e9,
+            "bending_stiffness": EI}}, "segments": [{"line_type": "c", "length": 200.0}],
+            "ends": {"anchor": [0.0, 10.0], "hang_off": [199.0, 10.0]}}, "t")
+    p = _line()
+    p.tension = 1.0e5 + 0 * p.s
+    reason = unresolved_bending(line(10.0), p, 1.0)
+    assert reason is not None and "0.01 m" in reason and "1 m element" in reason
+    assert unresolved_bending(line(1e8), p, 1.0) is None
+    q = _line()
+    q.moment = q.moment * 3.0                       # a moment far outside its tolerance
+    q.tension = p.tension
+    rows = agreement(p, q, 60.0, moment_reason=reason)
+    for r in rows:
+        if r["quantity"] in MOMENT_ROWS:
+            assert r["pass"] is None and r["note"] == reason
+        else:
+            assert r["pass"] is not None
+    judged = agreement(p, q, 60.0)
+    assert not {r["quantity"]: r for r in judged}["moment"]["pass"]   # it would fail

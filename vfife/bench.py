@@ -95,8 +95,11 @@ def run_bench(out_dir, scene: Scene, *, duration: float = 30.0) -> dict:
             planar_cur.replace(water_depth=float(static_model.X[1, -1]) + 10.0),
             static_model, True, surface=True),
     }
+    # contents and a sea surface above the hang-off (the wall tension's sea pressure needs
+    # a depth; the kernel runs without its surface path here, surface=False)
     full = scene.replace(line_types={k: dataclasses.replace(lt, contents_density=800.0)
-                                     for k, lt in scene.line_types.items()})
+                                     for k, lt in scene.line_types.items()},
+                         water_depth=float(static_model.X[1, -1]) + 10.0)
     ns["planar_drag_flow"] = _kernel_ns(full.replace(
         current=planar_cur.current, internal_flow=InternalFlow(speed=2.5)), static_model, True)
     ns["planar_drag_slug"] = _kernel_ns(full.replace(

@@ -741,13 +741,16 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
 def element_state(X, D, l0, kax, kb):
     """Element results for output (3D formulas, valid for planar states with z = 0):
     axial force N [N] (effective tension), end bending-moment vectors Ma, Mb (3, ne)
-    [N m], shear magnitude Q [N] and chord length l [m] (ne,)."""
+    [N m], shear magnitude Q [N], chord length l [m] (ne,) and the shear force vector S
+    (3, ne) [N] (the transverse part of the end moments' force pair, |S| = Q; one sign
+    convention along the line, so that nodes can interpolate it, see vfife/recovery.py)."""
     ne = l0.shape[0]
     N = np.empty(ne)
     Q = np.empty(ne)
     L = np.empty(ne)
     Ma = np.empty((3, ne))
     Mb = np.empty((3, ne))
+    S = np.empty((3, ne))
     for e in range(ne):
         d = X[:, e + 1] - X[:, e]
         l = math.sqrt(d[0] ** 2 + d[1] ** 2 + d[2] ** 2)
@@ -765,4 +768,5 @@ def element_state(X, D, l0, kax, kb):
         L[e] = l
         Ma[:, e] = ma
         Mb[:, e] = mb
-    return N, Ma, Mb, Q, L
+        S[:, e] = gt / l
+    return N, Ma, Mb, Q, L, S

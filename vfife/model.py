@@ -18,6 +18,7 @@ from riser.scene import Scene
 from . import kernels
 from .flow import flow_arrays
 from .mesh import Mesh
+from .recovery import Recovery
 
 #: largest contact damping ratio used by the explicit step (scene values above are clamped)
 MAX_CONTACT_ZETA = 1.0
@@ -116,6 +117,7 @@ class Model:
         self.use_dashpot = False
         self.Q = np.zeros((k, ne))
         self.steps = 0
+        self._recovery: Recovery | None = None
         self.time = 0.0                 # [s] the flow's clock (dynamics)
         self._set_flow(flow)
 
@@ -222,31 +224,32 @@ class Model:
 
     # -------------------------------------------------------------- results
     def element_state(self):
-        """(N [N], Ma, Mb (3, ne) [N m], Q [N], l [m]) of the current state."""
+        """(N [N], Ma, Mb (3, ne) [N m], Q [N], l [m], S (3, ne) [N]) of the current state
+        (:func:`vfife.kernels.element_state`)."""
         return kernels.element_state(self.X, self.D, self.l0, self.kax, self.kb)
 
+    @property
+    def recovery(self) -> Recovery:
+        """The element-to-node map of the nodal results (:mod:`vfife.recovery`), built once
+        per model."""
+        if self._recovery is None:
+            self._recovery = Recovery(self.mesh)
+        return self._recovery
+
     def nodal_results(self) -> dict:
-        """Tension, moment, shear and curvature at the nodes, and the element tensions
-        (``element_tension``, (ne,)).
+        """Tension [N], moment [N m], shear [N] and curvature [1/m] at the nodes, and the
+        element tensions (``element_tension``, (ne,)).
 
-        Element axial and shear forces are constant along an element and belong to its
-        midpoint: interior nodes take the average of their two elements, end nodes the
-        linear extrapolation of the last two. Nodal moment = mean of the end moments of the
-        two elements meeting there (they balance in equilibrium).
+        Second order at every node (:mod:`vfife.recovery`): the element tension and shear
+        vector belong to the element midpoint and are interpolated to an ordinary node,
+        extrapolated from each side to a joint (where the weight or the section changes)
+        and from the end elements to an end. Nodal moment = mean of the end moments of the
+        two elements meeting there (they balance in equilibrium); curvature = moment / EI,
+        the larger side's at a joint (min EI).
         """
-        N, Ma, Mb, Q, L = self.element_state()
+        N, Ma, Mb, Q, L, S = self.element_state()
         n = self.mesh.n
-
-        def to_nodes(v):
-            out = np.empty(n)
-            out[1:-1] = 0.5 * (v[1:] + v[:-1])
-            if len(v) >= 2:
-                out[0] = 1.5 * v[0] - 0.5 * v[1]
-                out[-1] = 1.5 * v[-1] - 0.5 * v[-2]
-            else:
-                out[0] = out[-1] = v[0]
-            return out
-
+        rec = self.recovery
         M = np.zeros((3, n))
         cnt = np.zeros(n)
         M[:, :-1] += Ma
@@ -255,16 +258,16 @@ class Model:
         cnt[1:] += 1
         M /= cnt
         mom = np.linalg.norm(M, axis=0)
-        EI_n = np.zeros(n)
-        EI_n[:-1] += self.mesh.EI
-        EI_n[1:] += self.mesh.EI
-        EI_n /= cnt
-        return {"tension": to_nodes(N), "moment": mom, "shear": to_nodes(Q),
+        EI_n = np.full(n, np.inf)
+        EI_n[:-1] = self.mesh.EI
+        EI_n[1:] = np.minimum(EI_n[1:], self.mesh.EI)
+        shear = np.linalg.norm(rec.vectors(S), axis=0)
+        return {"tension": rec.scalar(N), "moment": mom, "shear": shear,
                 "curvature": mom / EI_n, "element_tension": N}
 
     def energy(self) -> dict:
         """Kinetic, strain and gravity energies [J] of the current state (numpy, for tests)."""
-        N, Ma, Mb, Q, L = self.element_state()
+        N, Ma, Mb, Q, L, _ = self.element_state()
         V, D, W = self.V.T, self.D.T, self.W.T
         ke = 0.5 * np.sum(self.mass[:, None] * V ** 2)
         if np.any(self.madd > 0):

@@ -150,6 +150,12 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
             # weight x the element length), over the free nodes
             "force_residual": sinfo["residual"], "moment_residual": sinfo["moment_residual"],
             "creep_m": sinfo["creep_m"], "creep_tolerance_m": sinfo["creep_tolerance_m"],
+            # estimated change still to come of the element tensions / the largest and of
+            # the end moments / the largest (the final mesh's tests, vfife.relaxation.relax)
+            "tension_to_come": sinfo["tension_to_come"],
+            "moment_to_come": sinfo["moment_to_come"],
+            "tension_tolerance": sinfo["tension_tolerance"],
+            "moment_tolerance": sinfo["moment_tolerance"],
             "tolerance": tol, "compile_s": compile_s, "static_scheme": sinfo["static_scheme"],
             "step_limit": sinfo["step_limit"], "critical_steps": sinfo["critical_steps"],
             "kernel": "planar" if planar else "3d", "static_stages": sinfo["stages"],
@@ -172,8 +178,11 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
                if blew_up else
                f"static relaxation still creeping after {sinfo['steps']} steps: residual "
                f"{sinfo['residual']:.3g} x element weight (tolerance {tol:g}) but an "
-               f"estimated {sinfo['creep_m']:.3g} m of displacement still to come (creep "
-               f"tolerance {sinfo['creep_tolerance_m']:.3g} m); raise [vfife] max_steps"
+               f"estimated {sinfo['creep_m']:.3g} m of displacement (creep tolerance "
+               f"{sinfo['creep_tolerance_m']:.3g} m), {sinfo['tension_to_come']:.3g} of the "
+               f"largest tension (tolerance {sinfo['tension_tolerance']:g}) and "
+               f"{sinfo['moment_to_come']:.3g} of the largest moment (tolerance "
+               f"{sinfo['moment_tolerance']:g}) still to come; raise [vfife] max_steps"
                if sinfo["status"] is RelaxOutcome.CREEPING else
                f"static relaxation did not reach the tolerance {tol:g} in {sinfo['steps']} "
                f"steps (residual {sinfo['residual']:.3g} x element weight); raise [vfife] "

@@ -72,7 +72,11 @@ dashpot). The relaxation takes ~sqrt(EA) steps
 transverse modes, not by EA).
 Converged when the largest nodal out-of-balance force (free nodes) is below
 ``tolerance`` x the weight of one element, and the largest nodal moment below the same
-fraction of that weight x the element length.
+fraction of that weight x the element length (never below the round-off of the element
+forces), with the creep test on every mesh and, on the final mesh, the tests on the
+change still to come of the element tensions (``tension_tolerance``, 1e-5 of the largest)
+and end moments (``moment_tolerance``, 5e-4): they bound the error of what is reported,
+which the force and creep tests do not on a taut line (see :func:`vfife.relaxation.relax`).
 """
 
 from __future__ import annotations
@@ -84,7 +88,7 @@ import numpy as np
 
 from .mesh import Mesh, build_mesh, catenary_shape, interpolate_state, length_consistent
 from .model import Model
-from .relaxation import RelaxOutcome, relax, static_inertia
+from .relaxation import RelaxOutcome, Tolerances, divergence_message, relax, static_inertia
 from .timestep import choose_step, critical_steps, node_sum
 
 
@@ -122,32 +126,6 @@ def fundamental_omega(mesh: Mesh, tension: float) -> float:
     return k * math.sqrt(max(tension, 0.0) / m) + k * k * math.sqrt(EI / m)
 
 
-def divergence_message(scene, h: float, dt: float, limit: str, steps: dict,
-                       nstep: int) -> str:
-    """Message for a relaxation that diverged (NaN/inf or runaway speeds), naming the
-    likely cause from the step and the critical steps of the mesh being relaxed."""
-    crit = min(steps.values())
-    name = min(steps, key=steps.get)
-    head = (f"static relaxation diverged (NaN/inf or runaway speed) after {nstep} steps on "
-            f"the {h:g} m mesh with time step {dt:.3g} s (critical: {name} {crit:.3g} s)")
-    if dt > crit:
-        if limit.startswith("user"):
-            cause = (f"the fixed [vfife] static_time_step {dt:.3g} s is {dt / crit:.3g} x the "
-                     f"critical step; remove it or use <= {0.8 * crit:.3g} s")
-        else:
-            cause = ("[vfife] time_step_safety too high for the critical-step estimate; "
-                     "lower it")
-    elif "seabed" in steps and steps["seabed"] <= 1.05 * crit:
-        cause = (f"the seabed contact (stiffness {scene.seabed.stiffness:.3g} N/m2, damping "
-                 f"{scene.seabed.damping:g} of critical) limits the step; lower "
-                 "[vfife] time_step_safety or the seabed stiffness")
-    else:
-        cause = ("an impossible or badly started geometry (line much longer or shorter than "
-                 "the span, a slack line buckling); check the ends and segment lengths, or "
-                 "lower [vfife] time_step_safety")
-    return f"{head}; likely cause: {cause}"
-
-
 def mesh_sequence(h_coarse: float, h: float, ratio: float = 4.0) -> list[float]:
     """Element lengths [m] of the mesh sequence from ``h_coarse`` down to ``h``: each mesh at
     most ``ratio`` times finer than the one before (h x ratio^k below ``h_coarse``), no
@@ -179,6 +157,8 @@ class RelaxationKnobs:
     damping_fine: float           # ... on the finer meshes
     damping_current: float        # ... on the finer meshes with a current
     creep_tol_m: float            # [m] displacement still to come (0: test off)
+    tension_tol: float            # tension still to come, of the largest (0: test off)
+    moment_tol: float             # moment still to come, of the largest (0: test off)
     fictitious: bool              # fictitious masses where bending/rotation/seabed limit
     contact_damping: float        # seabed contact damping, fraction of critical (at least)
     continuation_steps: int       # weight ramp steps for an unusable catenary start
@@ -192,6 +172,7 @@ class RelaxationKnobs:
                    vf.coarse_element_length, vf.static_axial_damping, vf.static_damping,
                    vf.static_damping_fine, vf.static_damping_current,
                    vf.creep_tolerance * float(sum(sg.length for sg in scene.segments)),
+                   vf.tension_tolerance, vf.moment_tolerance,
                    vf.static_fictitious_inertia, vf.static_contact_damping,
                    vf.static_weight_continuation_steps, vf.static_time_step,
                    scene.seabed.stiffness if scene.seabed is not None else 0.0)
@@ -322,7 +303,8 @@ def weight_ramp(model: Model, dt: float, c: float, ramp: tuple, budget: int, lab
     for j in range(1, ramp[1]):
         lam = j / ramp[1]
         model.wload = (1.0 - lam) * w_uniform + lam * w_true
-        rr = relax(model, dt, c, 1e-2, max(1, budget // (4 * ramp[1])), progress=progress,
+        rr = relax(model, dt, c, Tolerances(1e-2), max(1, budget // (4 * ramp[1])),
+                   progress=progress,
                    label=f"{label}, weight ramp {lam:.2f}")
         taken += rr["steps"]
         if rr["status"] is RelaxOutcome.BLOW_UP:
@@ -332,7 +314,8 @@ def weight_ramp(model: Model, dt: float, c: float, ramp: tuple, budget: int, lab
 
 
 def relax_stage(model: Model, dt: float, omega1: float, first: bool, tolerance: float,
-                budget: int, knobs: RelaxationKnobs, label: str, progress=None) -> dict:
+                budget: int, knobs: RelaxationKnobs, label: str, progress=None,
+                last: bool = True) -> dict:
     """Relax one mesh stage (:func:`vfife.relaxation.relax`). The first stage (or a
     single-stage run from the catenary) at the coarse damping. A fine stage of a sequence:
     heavy damping until the force residual is met (the short waves of the interpolated
@@ -340,17 +323,21 @@ def relax_stage(model: Model, dt: float, omega1: float, first: bool, tolerance: 
     damping for them (they decay at omega^2 / c): buoyancy sections whose ends fall inside
     a coarse element move the long modes on the fine mesh (yu2021-a3 at 1 m took 4.8e6
     steps at 30 x, 7.4e5 at 3 x), while short waves need the heavy damping (Wang baseline:
-    3.6e4 at 30 x, 4.2e5 at 3 x; hard-stiff stalls at 1.4e-3 at 3 x)."""
-    ctol = knobs.creep_tol_m if knobs.creep_tol_m > 0 else None
+    3.6e4 at 30 x, 4.2e5 at 3 x; hard-stiff stalls at 1.4e-3 at 3 x).
+    ``last``: the mesh whose results are reported, the only one with the tests on the
+    tension and moment still to come (a coarser mesh only gives the next one its start)."""
+    tol = Tolerances(tolerance, knobs.creep_tol_m if knobs.creep_tol_m > 0 else None,
+                     knobs.tension_tol if (last and knobs.tension_tol > 0) else None,
+                     knobs.moment_tol if (last and knobs.moment_tol > 0) else None)
     if first:
-        return relax(model, dt, knobs.damping * 2.0 * omega1, tolerance, budget,
-                     progress=progress, label=label, creep_tol=ctol)
+        return relax(model, dt, knobs.damping * 2.0 * omega1, tol, budget,
+                     progress=progress, label=label)
     c = (knobs.damping_current if model.use_drag else knobs.damping_fine) * 2.0 * omega1
-    r = relax(model, dt, c, tolerance, budget, progress=progress, label=label,
-              creep_tol=ctol, creep_windows=4 if ctol is not None else None)
+    r = relax(model, dt, c, tol, budget, progress=progress, label=label,
+              creep_windows=4 if tol.windowed else None)
     if r["status"] is RelaxOutcome.CREEPING and budget > r["steps"]:
-        r2 = relax(model, dt, knobs.damping * 2.0 * omega1, tolerance, budget - r["steps"],
-                   progress=progress, label=f"{label}, long modes", creep_tol=ctol)
+        r2 = relax(model, dt, knobs.damping * 2.0 * omega1, tol, budget - r["steps"],
+                   progress=progress, label=f"{label}, long modes")
         r2["steps"] += r["steps"]
         r2["wall_s"] += r["wall_s"]
         r2["damping"] = f"{c:.3g} then {r2['damping']:.3g}"
@@ -395,14 +382,15 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
                               progress)
             budget = max(1, budget - pre)
             total_steps += pre
-        r = relax_stage(new, dt, om1, si == 0, tolerance, budget, knobs, label, progress)
+        r = relax_stage(new, dt, om1, si == 0, tolerance, budget, knobs, label, progress,
+                        last=si == len(stages) - 1)
         r.update(iinfo)
         total_steps += r["steps"]
         info.setdefault("stages", []).append(
             {"element_length": h, "elements": mesh.ne, "time_step": dt, "step_limit": limit,
              "critical_steps": steps,
              **{k: r[k] for k in ("steps", "residual", "status", "wall_s", "damping",
-                                  "creep_m")},
+                                  "creep_m", "tension_to_come", "moment_to_come")},
              **{k: r[k] for k in ("dt_axial", "mass_factor_max", "rot_factor_max") if k in r}})
         model = new
         if r["status"] is RelaxOutcome.BLOW_UP:
@@ -414,5 +402,9 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
                  "moment_residual": r["moment_residual"], "time_step": last["time_step"],
                  "status": last["status"], "critical_steps": steps,
                  "step_limit": last["step_limit"], "creep_m": last["creep_m"],
-                 "creep_tolerance_m": knobs.creep_tol_m})
+                 "creep_tolerance_m": knobs.creep_tol_m,
+                 "tension_to_come": last["tension_to_come"],
+                 "moment_to_come": last["moment_to_come"],
+                 "tension_tolerance": knobs.tension_tol,
+                 "moment_tolerance": knobs.moment_tol})
     return model, info

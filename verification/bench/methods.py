@@ -1,8 +1,9 @@
 """The methods' bench (``riser-verify bench``, ``reports/bench/bench.json``): the VFIFE
 kernel per element-step for each effect and the solver on the Wang riser fixed at its
-hang-off (:mod:`vfife.bench`), the BVP on the Wang baseline and its Table 2 batch
-(:mod:`bvp.bench`), and the analytic method against the BVP on the single-section
-scenes, each pair timed in the same run (speed claims are ratios)."""
+hang-off (:mod:`vfife.bench`), the BVP on the Wang baseline, its Table 2 batch and its
+cost against the segment count (:mod:`bvp.bench`), and the analytic method against the
+BVP on the single-section scenes, each pair timed in the same run (speed claims are
+ratios)."""
 
 from __future__ import annotations
 
@@ -17,6 +18,8 @@ from verification.catalog import resolve
 WANG_BASELINE = "wang2014-baseline"
 WANG_CURRENTS = ("wang2014-current-neg1p5", "wang2014-current-neg0p75",
                  "wang2014-current-0p75", "wang2014-current-1p5")
+#: the lazy wave of the BVP's segment-count table (cut finer, and as discrete modules)
+LAZY_WAVE = "yu2021-a3"
 #: the single-section scenes the bench times with the analytic method and the BVP
 ANALYTIC_BENCH_SCENES = ("scr-steel", "kang2015-jlay")
 
@@ -37,6 +40,10 @@ def run(out: Path) -> dict:
     from vfife.bench import run_bench
     bench = run_bench(out, bench_scene())
     bench["bvp"] = bvp_bench(resolve(WANG_BASELINE), [resolve(n) for n in WANG_CURRENTS])
+    # the BVP's cost against the segment count (issue 29): same physics cut finer, and a
+    # lazy wave's buoyancy as discrete modules; each solve in a fresh process
+    from bvp.bench import segment_scaling
+    bench["bvp_segments"] = segment_scaling(resolve(LAZY_WAVE), resolve(WANG_BASELINE))
     # the analytic method against the BVP on the same single-section scenes, side by side
     single = [resolve(n) for n in ANALYTIC_BENCH_SCENES]
     a_t, b_t = analytic_times(single), bvp_times(single)
@@ -57,4 +64,7 @@ def summary_lines(bench: dict) -> list[str]:
     lines.append(f"BVP: Wang baseline at tolerance 1e-6 {b['bvp_baseline_s']:.3f} s (median "
                  f"of {b['bvp_baseline_runs']}, target < 0.5 s); Table 2 batch of "
                  f"{b['bvp_table2_solves']} solves {b['bvp_table2_s']:.2f} s (target < 10 s)")
+    if "bvp_segments" in bench:
+        from bvp.bench import scaling_lines
+        lines.extend(scaling_lines(bench["bvp_segments"]))
     return lines

@@ -33,7 +33,7 @@ def cmd_compare(args) -> int:
                        folder=out, paper_model=not args.no_paper_model, progress=prog)
     write(comp, out)
     for r in comp.rows:
-        flag = "ok  " if r["pass"] else "FAIL"
+        flag = {True: "ok  ", False: "FAIL", None: "n/a "}[r["pass"]]
         rel = f"{100 * r['rel_diff']:+.4f} %" if r["rel_diff"] is not None else ""
         diff = r["abs_diff"] if r["abs_diff"] is not None else float("nan")
         print(f"  {flag} {r['quantity']:<22} |diff| {diff:.6g} {rel}")

@@ -11,13 +11,15 @@ a continuous solution are kept out of the metrics, each measured (issue 11):
   of M_max on hard-current-pos2p5, whose M_max is 11 kN m) to the moment metric. At the
   nodes it is 0.24 % there; the choice of interpolant for the BVP (linear, cubic, Akima)
   changes no metric by more than 1e-4 % of M_max.
-- A VFIFE element force is constant and belongs to the element midpoint; a node reports
-  the mean of its two elements (``vfife.model.Model.nodal_results``). Where the tension
-  has a kink (a jump of the submerged weight at a segment joint) that mean is off by
-  |dw| h / 4: 0.17-0.20 % of T_max on the Yu risers (1130 N/m of buoyancy) at 1 m,
-  halving at 0.5 m. The BVP tension is therefore put through the same operator
-  (:func:`verification.quantities.nodal_average`): sampled at the VFIFE element midpoints and averaged to the
-  nodes. What remains is the discretisation error (0.02 % on Yu A1, 0.004 % on Wang).
+- A VFIFE element force is constant and belongs to the element midpoint. The VFIFE
+  recovers its nodal tension and shear to second order at every node (``vfife.recovery``:
+  at a segment joint, where the tension has a kink, each side extrapolates its own
+  elements), so the BVP is taken at the same arc length as a point value. (The former
+  nodal mean was off by |dw| h / 4 at a weight jump: 0.17-0.20 % of T_max on the Yu
+  risers at 1 m, 1.1 % of Yu A4's lower maximum tension; the BVP was then put through the
+  same mean.) A peer that reports the mean of its two segments at a node (MoorDyn) asks
+  for the BVP through that mean with ``nodal=True``
+  (:func:`verification.quantities.nodal_average`).
 """
 
 from __future__ import annotations
@@ -25,6 +27,7 @@ from __future__ import annotations
 import numpy as np
 
 from riser.profile import Profile, summarize
+from riser.sections import segment_properties
 from verification.pipeline import shifted
 from verification.quantities import (
     curve_distance,
@@ -41,8 +44,14 @@ from .tolerances import tolerance, tolerance_value, unit
 AGREEMENT_COLUMNS = ("quantity", "bvp", "vfife", "abs_diff", "rel_diff", "tolerance", "pass")
 
 
+#: the rows of the bending moment: not judged on a line whose bending the elements cannot
+#: resolve (see ``moment_reason`` of :func:`agreement`)
+MOMENT_ROWS = ("moment", "max_moment", "max_moment_s")
+
+
 def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
-              s_shift: float = 0.0, nodal: bool = True) -> list[dict]:
+              s_shift: float = 0.0, nodal: bool = False,
+              moment_reason: str | None = None) -> list[dict]:
     """The protocol's rows for two static profiles.
 
     Each row has the :data:`AGREEMENT_COLUMNS` (``abs_diff`` = |VFIFE - BVP|, ``rel_diff``
@@ -50,9 +59,14 @@ def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
     :func:`verification.comparison.tolerances.tolerance`) and, for the report, ``unit``, ``diff``
     (signed, in the unit), ``basis_label``, ``tol_label`` and ``at_s`` (arc length of the
     largest profile difference, BVP coordinate). ``s_shift`` [m] is subtracted from the
-    VFIFE arc lengths. ``nodal``: take the BVP tension through the VFIFE's nodal average
-    (module docstring); False compares point values (a second profile that is not a
-    VFIFE's, e.g. the analytic method's)."""
+    VFIFE arc lengths. ``nodal``: take the BVP tension through the mean of two segments at
+    each node (module docstring; a MoorDyn profile); False (the VFIFE's second-order
+    nodal values, the analytic method's) compares point values. ``moment_reason``: why the moment cannot be
+    judged on this line (its bending length below the element,
+    :func:`unresolved_bending`): the moment rows are then shown, not judged (``pass``
+    None, the reason in ``note``). A crest's or sag's position row takes a tolerance
+    conditioned on its curvature (the BVP's there; a flat feature's position is
+    ill-conditioned, :func:`~.tolerances.feature_position_tolerance`)."""
     rows: list[dict] = []
     vf = shifted(vf_prof, s_shift)
     sb, sv = summarize(bvp_prof), summarize(vf)
@@ -62,9 +76,9 @@ def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
     Mmax = max(float(np.max(bvp_prof.moment)), 1e-12)
     scales = {"depth": depth, "max_tension": Tmax, "max_moment": Mmax}
 
-    def add(name, b, v, diff=None, at_s=None, note=""):
+    def add(name, b, v, diff=None, at_s=None, note="", curvature=None):
         """A row; ``diff`` is the signed difference (default v - b)."""
-        t = tolerance(name, bvp_value=b, **scales)
+        t = tolerance(name, bvp_value=b, curvature=curvature, **scales)
         row = {"quantity": name, "bvp": b, "vfife": v, "unit": unit(name), "at_s": at_s,
                "note": note,
                "tol_label": t["label"], "basis_label": t["basis_label"], "basis": t["basis"],
@@ -76,6 +90,8 @@ def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
             row.update({"diff": d, "abs_diff": abs(d),
                         "rel_diff": d / t["basis"] if t["basis"] else None,
                         "pass": bool(abs(d) <= t["tol"])})
+        if moment_reason and name in MOMENT_ROWS:
+            row.update({"pass": None, "note": moment_reason})
         rows.append(row)
 
     dmax, drms, s_at = curve_distance(bvp_prof, vf, (lo, hi))
@@ -104,7 +120,8 @@ def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
         for i, cb in enumerate(sb[kind]):
             cv = match_feature(cb, sv[kind]) or {"height": None, "s": None}
             add(f"{tag}{i + 1}_height", cb["height"], cv["height"])
-            add(f"{tag}{i + 1}_s", cb["s"], cv["s"])
+            add(f"{tag}{i + 1}_s", cb["s"], cv["s"],
+                curvature=float(np.interp(cb["s"], bvp_prof.s, bvp_prof.curvature)))
         if len(sv[kind]) != len(sb[kind]):
             n_b, n_v = len(sb[kind]), len(sv[kind])
             rows.append({"quantity": f"{kind}_count", "bvp": n_b, "vfife": n_v, "unit": "-",
@@ -120,3 +137,31 @@ def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
         note="between the nearest peaks within the max_moment tolerance of the maximum "
              "(a tie)" if tie else "")
     return rows
+
+
+def unresolved_bending(scene, bvp_prof: Profile, element_length: float,
+                       s_shift: float = 0.0) -> str | None:
+    """Why the VFIFE's elements of ``element_length`` [m] cannot resolve the bending of
+    the line ``scene`` (a chain, a rope, a slack cable), or None when they can.
+
+    The bending length at a station is the shorter of the tension layer sqrt(EI/|T|) and
+    the weight layer (EI/|w|)^(1/3) [m], over which the moment rises and falls; the line's
+    longest, at its most resolvable station, is compared with the element: when even that
+    is shorter than one element, no moment the VFIFE reports resolves the beam's, and a
+    difference in the moment rows is the mesh, not a defect (measured: hard-flexible,
+    EI 1e3 N m2, bending lengths 0.07-0.3 m on 1 m elements). ``bvp_prof`` in the arc
+    length of ``scene``; ``s_shift`` [m] is subtracted from the s the reason quotes."""
+    props = segment_properties(scene)
+    ends = np.array([p.s_end for p in props])
+    idx = np.clip(np.searchsorted(ends, bvp_prof.s, side="left"), 0, len(props) - 1)
+    EI = np.array([p.EI for p in props])[idx]
+    w = np.abs(np.array([p.weight for p in props]))[idx]
+    T = np.maximum(np.abs(bvp_prof.tension), 1e-300)
+    layer = np.minimum(np.sqrt(EI / T), np.cbrt(EI / np.maximum(w, 1e-300)))
+    j = int(np.argmax(layer))
+    if layer[j] >= element_length:
+        return None
+    return (f"not judged: the line's longest bending length, min(sqrt(EI/T), (EI/w)^(1/3)) "
+            f"= {layer[j]:.3g} m at s = {bvp_prof.s[j] - s_shift:.1f} m, is shorter than the "
+            f"{element_length:g} m element: the elements cannot resolve its moment (a chain, "
+            "rope or slack cable; or elements too long for this line)")

@@ -46,8 +46,7 @@ class AnalyticColumn:
             return ColumnResult(self, res, note=f"The analytic method ended in "
                                 f"{res.status.value}: {res.message}.")
         profile = shifted(res.profile, comp.s_shift)
-        rows = agreement(shifted(comp.bvp.profile, comp.s_shift), profile, comp.depth,
-                         nodal=False)
+        rows = agreement(shifted(comp.bvp.profile, comp.s_shift), profile, comp.depth)
         i = res.info
         return ColumnResult(
             self, res, profile, verdict_values(comp.rows, rows), rows,

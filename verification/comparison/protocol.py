@@ -36,7 +36,7 @@ from riser.scene import FixedEnds, Scene
 from verification.pipeline import shifted, vfife_equivalent
 from verification.quantities import reference_depth
 
-from .agreement import AGREEMENT_COLUMNS, agreement
+from .agreement import AGREEMENT_COLUMNS, agreement, unresolved_bending
 from .analytic_column import AnalyticColumn
 from .columns import Column, ColumnResult
 
@@ -71,7 +71,9 @@ class Comparison:
 
     @property
     def passed(self) -> bool:
-        return all(r["pass"] for r in self.rows)
+        """Every judged row within its tolerance (a row shown but not judged, pass None,
+        does not count: its reason is in its note)."""
+        return all(r["pass"] is not False for r in self.rows)
 
     @property
     def columns_ok(self) -> bool:
@@ -170,7 +172,8 @@ def compare(scene: Scene, *, element_length: float | None = None, paper_model: b
                           f"{v.message}")
     depth = reference_depth(scene, b.summary())
     bp, vp = shifted(b.profile, s_shift), shifted(v.profile, s_shift)
-    rows = agreement(bp, vp, depth)
+    bending = unresolved_bending(matched, b.profile, v.info["element_length"], s_shift)
+    rows = agreement(bp, vp, depth, moment_reason=bending)
     comp = Comparison(scene, vf_scene, s_shift, depth, b, v, rows, matched_scene=matched,
                       notes=notes)
     if paper_model:

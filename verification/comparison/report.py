@@ -9,12 +9,16 @@ from pathlib import Path
 import numpy as np
 
 from verification.pipeline import shifted
-from verification.quantities import nodal_average, signed_moment
+from verification.quantities import signed_moment
 from verification.report.figures import new_figure, save
 from verification.report.markdown import GENERATED_NOTE, fmt, md_table
 
 from .formatting import ROUND_OFF, num, rel, scale, signed, where
 from .protocol import Comparison, model_text
+
+
+#: the report's word for a row's ``pass``: within, outside, or not judged (shown only)
+PASS_WORD = {True: "yes", False: "**no**", None: "n/a"}
 
 
 def write(comp: Comparison, out_dir: str | Path) -> None:
@@ -43,7 +47,7 @@ def _rows_table(rows: list[dict]) -> str:
         out.append((f"`{r['quantity']}`", r.get("unit", ""), num(r["bvp"], sc),
                     num(r["vfife"], sc), signed(r.get("diff"), sc) + where(r) + note, rel(r),
                     num(r["tolerance"]), r.get("tol_label", ""),
-                    "yes" if r["pass"] else "**no**"))
+                    PASS_WORD[r["pass"]]))
     return md_table(["quantity", "unit", "BVP", "VFIFE", "VFIFE - BVP", "relative",
                      "tolerance", "tolerance basis", "pass"], out)
 
@@ -55,7 +59,7 @@ def _headline(comp: Comparison) -> list[str]:
     rows = []
     for q, r in comp.worst().items():
         rows.append((names[q], signed(r.get("diff"), scale(r)) + f" {r['unit']}" + where(r),
-                     rel(r), r.get("tol_label", ""), "yes" if r["pass"] else "**no**"))
+                     rel(r), r.get("tol_label", ""), PASS_WORD[r["pass"]]))
     return [md_table(["worst difference (VFIFE - BVP)", "value", "relative", "tolerance",
                       "pass"], rows)]
 
@@ -65,16 +69,21 @@ def report_markdown(comp: Comparison, heading: str = "#") -> str:
     ms = comp.matched_scene or comp.vfife_scene
     b, v = comp.bvp, comp.vfife
     verdict = "PASS" if comp.passed else "FAIL"
-    failed = [r["quantity"] for r in comp.rows if not r["pass"]]
+    failed = [r["quantity"] for r in comp.rows if r["pass"] is False]
+    not_judged = [r for r in comp.rows if r["pass"] is None]
     lines = [
         f"{heading} VFIFE vs BVP: `{sc.name}`",
         "",
         GENERATED_NOTE,
         "",
         f"**Verdict: {verdict}**" + (f" (outside tolerance: {', '.join(failed)})" if failed else
-                                     " (every metric within its tolerance)"),
+                                     " (every judged metric within its tolerance)"
+                                     if not_judged else " (every metric within its tolerance)"),
         "",
     ]
+    if not_judged:
+        lines += [f"Not judged ({', '.join(r['quantity'] for r in not_judged)}): "
+                  f"{not_judged[0]['note']}.", ""]
     lines += _headline(comp)
     lines += [
         "",
@@ -120,7 +129,7 @@ def report_markdown(comp: Comparison, heading: str = "#") -> str:
                 rows.append((f"`{r['quantity']}`", r.get("unit", ""), num(r["bvp"], sc0),
                              signed(r.get("diff"), sc0) + where(r), rel(r),
                              rel(r0) if r0 else "",
-                             "yes" if r["pass"] else "no"))
+                             {True: "yes", False: "no", None: "n/a"}[r["pass"]]))
             lines.append(md_table(["quantity", "unit", "BVP paper model", "VFIFE - paper",
                                    "relative", "relative, matched model", "within tolerance"],
                                   rows))
@@ -179,7 +188,7 @@ def _plots(comp: Comparison, out: Path) -> None:
     sel = (vp.s >= lo - 1e-9) & (vp.s <= hi + 1e-9)
     g = vp.s[sel]
     fig, axes = new_figure(3, 1, (9, 9))
-    dT = vp.tension[sel] - nodal_average(vp.s, bp.s, bp.tension)[sel]
+    dT = vp.tension[sel] - np.interp(g, bp.s, bp.tension)
     dM = signed_moment(vp)[sel] - np.interp(g, bp.s, signed_moment(bp))
     # vertical offset at the same arc length (a simple view of the configuration difference)
     dy = vp.y[sel] - np.interp(g, bp.s, bp.y)

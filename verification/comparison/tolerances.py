@@ -10,7 +10,9 @@ has to cover the discretisation of each method, not a model difference. Each ent
 - ``of_T_max`` / ``of_M_max``: a fraction of the largest BVP effective tension / bending
   moment along the line;
 - ``rel``: a fraction of the BVP value of the quantity itself;
-- ``abs``: absolute, in the quantity's unit (m or deg).
+- ``abs``: absolute, in the quantity's unit (m or deg);
+- ``feature_s``: the arc length of a crest or sag: the angle agreement over the feature's
+  curvature, at least the value given (:func:`feature_position_tolerance`).
 
 The relative difference of a row (``rel_diff`` of ``agreement.csv``) is the signed
 (VFIFE - BVP) / basis with the same basis as its tolerance; absolute lengths are
@@ -31,8 +33,10 @@ hard-large-heave (2 m) and hard-long-dynamic (5 m) at 1 m (the same line as the 
 baseline), hard-flexible's moment rows left out (EI = 1e3 N m2: the moment boundary
 layers, sqrt(EI/T) ~ 0.07 m, are far below any practical element; a stability case).
 Worst value of each row and its scene are quoted below. The profile metrics are taken
-at the VFIFE nodes with the BVP tension put through VFIFE's nodal average (see
-:mod:`verification.comparison.protocol`). Reasons: VFIFE positions and tension converge at least
+at the VFIFE nodes, the BVP interpolated there (issue 11 put the BVP tension through the
+VFIFE's former nodal mean of two elements; since issue 29 the VFIFE recovers its nodal
+tension to second order at the joints, ``vfife.recovery``, and both are point values;
+see :mod:`verification.comparison.agreement`). Reasons: VFIFE positions and tension converge at least
 as fast as the second order in the element length (Yu A1: configuration 0.0135 % ->
 0.0022 % of depth from 1 m to 0.5 m); its moment, from element end rotations, carries a
 first-order error at the sharpest moment peak, the seabed lift-off (foundation length
@@ -41,6 +45,7 @@ first-order error at the sharpest moment peak, the seabed lift-off (foundation l
 
 from __future__ import annotations
 
+import math
 import re
 
 TOLERANCES = {
@@ -82,9 +87,12 @@ TOLERANCES = {
     "crest_height": ("of_depth", 2.0e-4),
     "sag_height": ("of_depth", 2.0e-4),
     # m; arc length of a crest/sag (parabolic vertex of the height): measured worst
-    # 0.009 m (crests) and 0.015 m (sags, hard-slack-touchdown); x3.3 -> 0.05 m.
-    "crest_s": ("abs", 0.05),
-    "sag_s": ("abs", 0.05),
+    # 0.009 m (crests) and 0.015 m (sags, hard-slack-touchdown); x3.3 -> 0.05 m, the
+    # floor of a tolerance conditioned on the feature's flatness (feature_s below: a
+    # vertex sits where the angle crosses zero, so an angle difference moves it by the
+    # angle over the curvature there; a flat crest's position is ill-conditioned)
+    "crest_s": ("feature_s", 0.05),
+    "sag_s": ("feature_s", 0.05),
     # the largest moment: measured worst 0.095 % of M_max (Yu A1); x2.1 -> 0.2 %.
     "max_moment": ("of_M_max", 2.0e-3),
     # m; location of the largest moment (parabolic vertex; peaks within the max_moment
@@ -92,6 +100,11 @@ TOLERANCES = {
     # Measured worst 0.080 m (scr-steel); x2.5 -> 0.2 m.
     "max_moment_s": ("abs", 0.2),
 }
+
+#: the angle [deg] to which the two methods' lines agree along the line: the hang-off
+#: angle's tolerance (measured worst 0.016 deg there); it conditions the position
+#: tolerance of a feature (a crest, a sag: :func:`feature_position_tolerance`)
+FEATURE_ANGLE_DEG = TOLERANCES["hang_off_angle_deg"][1]
 
 #: unit of each quantity (the name with its digits removed: crest2_height -> crest_height)
 UNITS = {
@@ -115,15 +128,45 @@ def unit(name: str) -> str:
     return UNITS.get(base_name(name), "")
 
 
+def feature_position_tolerance(curvature: float | None, floor: float) -> float:
+    """The tolerance [m] on the arc length of a crest or sag of curvature ``curvature``
+    [1/m] there (the BVP's): a vertex of the height y(s) sits where the tangent angle
+    crosses zero, so an angle difference d_theta between the two lines moves it by
+    d_theta / kappa. With d_theta the lines' angle agreement (:data:`FEATURE_ANGLE_DEG`):
+    max(``floor``, d_theta / |kappa|); a flat crest (kappa -> 0) has an ill-conditioned
+    position, and its tolerance grows accordingly."""
+    if curvature is None or not abs(curvature) > 0.0:
+        return float("inf")
+    return max(floor, math.radians(FEATURE_ANGLE_DEG) / abs(curvature))
+
+
+def feature_moment_tolerance(max_moment: float, moment_slope: float,
+                             curvature: float | None) -> float:
+    """The tolerance [N m] on the bending moment read at a crest or sag: the moment
+    profile's (0.5 % of M_max) plus the moment's change over the feature's position
+    tolerance, |dM/ds| x :func:`feature_position_tolerance` (a flat crest's moment is read
+    at an ill-conditioned point)."""
+    ds = feature_position_tolerance(curvature, TOLERANCES["crest_s"][1])
+    return TOLERANCES["moment"][1] * max_moment + abs(moment_slope) * ds
+
+
 def tolerance(name: str, *, bvp_value: float | None = 0.0, depth: float = 1.0,
-              max_tension: float = 1.0, max_moment: float = 1.0) -> dict:
-    """Tolerance of row ``name`` for a scene with these scales.
+              max_tension: float = 1.0, max_moment: float = 1.0,
+              curvature: float | None = None) -> dict:
+    """Tolerance of row ``name`` for a scene with these scales (``curvature`` [1/m]: the
+    BVP's at a feature, for its position row).
 
     Returns ``{"tol": absolute tolerance in the unit of the quantity, "label": e.g.
     '0.5 % of M_max', "basis": the value that normalises the relative difference (None
     when there is none), "basis_label": e.g. 'M_max'}``."""
     kind, value = TOLERANCES[base_name(name)]
     u = unit(name)
+    if kind == "feature_s":
+        tol = feature_position_tolerance(curvature, value)
+        label = (f"{value:g} {u}" if tol == value else
+                 f"{FEATURE_ANGLE_DEG:g} deg / kappa = {tol:.3g} {u} (kappa "
+                 f"{abs(curvature):.3g} 1/m)")
+        return {"tol": tol, "label": label, "basis": None, "basis_label": ""}
     if kind == "abs":
         # an absolute tolerance has no basis: the row's difference stays in its unit, the
         # same normalisation as its tolerance (no relative difference is reported)
@@ -135,8 +178,9 @@ def tolerance(name: str, *, bvp_value: float | None = 0.0, depth: float = 1.0,
 
 
 def tolerance_value(name: str, *, bvp_value: float = 0.0, depth: float = 1.0,
-                    max_tension: float = 1.0, max_moment: float = 1.0) -> tuple[float, str]:
+                    max_tension: float = 1.0, max_moment: float = 1.0,
+                    curvature: float | None = None) -> tuple[float, str]:
     """(absolute tolerance, description) for quantity ``name`` (see :func:`tolerance`)."""
     t = tolerance(name, bvp_value=bvp_value, depth=depth, max_tension=max_tension,
-                  max_moment=max_moment)
+                  max_moment=max_moment, curvature=curvature)
     return t["tol"], t["label"]

@@ -33,7 +33,7 @@ from riser.errors import SceneError, SolveFailed
 from riser.result import Status
 from riser.scene import FixedEnds
 from verification.catalog import SCENE_DIR, resolve
-from verification.comparison.agreement import agreement
+from verification.comparison.agreement import agreement, unresolved_bending
 from verification.pipeline import solve_scene
 from verification.quantities import reference_depth
 from verification.report.markdown import GENERATED_NOTE, fmt, md_table
@@ -155,16 +155,35 @@ def run(out_dir: str | Path = "reports/stress", names: list[str] | None = None, 
             rows[-2]["message"] += evidence
         if b is not None and v is not None:
             # both profiles are in the scene's own arc length (solve_scene shifts the VFIFE's)
-            agr = agreement(b.profile, v.profile, reference_depth(resolve(name), b.summary()))
-            failed = [r["quantity"] for r in agr if not r["pass"]]
-            text = (f"{len(agr) - len(failed)}/{len(agr)} rows pass"
-                    + (f" (outside: {', '.join(failed)})" if failed else ""))
+            sc = resolve(name)
+            bending = unresolved_bending(sc, b.profile, v.info["element_length"])
+            agr = agreement(b.profile, v.profile, reference_depth(sc, b.summary()),
+                            moment_reason=bending)
+            text = agreement_text(agr, v.warnings)
             for r in rows[-2:]:
                 r["agreement"] = text
     df = pd.DataFrame(rows, columns=COLUMNS)
     df.to_csv(out / "summary.csv", index=False, float_format="%.6g")
     _report(df, out)
     return df
+
+
+def agreement_text(rows: list[dict], vfife_warnings: list[str]) -> str:
+    """One cell: the rows within their tolerance, those not judged and those outside, each
+    with its reason: a row outside its tolerance is explained by the VFIFE's own
+    resolution warning when it gave one, else said to have no stated cause."""
+    failed = [r["quantity"] for r in rows if r["pass"] is False]
+    skipped = [r for r in rows if r["pass"] is None]
+    judged = len(rows) - len(skipped)
+    text = f"{judged - len(failed)}/{judged} rows pass"
+    if skipped:
+        text += (f"; not judged: {', '.join(r['quantity'] for r in skipped)} "
+                 f"({skipped[0]['note']})")
+    if failed:
+        why = [w for w in vfife_warnings if w.startswith("resolution:")]
+        text += (f"; outside: {', '.join(failed)} ("
+                 + ("the VFIFE's " + "; ".join(why) if why else "no stated cause") + ")")
+    return text
 
 
 def _report(df: pd.DataFrame, out: Path) -> None:

@@ -256,7 +256,7 @@ def _agreement_section(run: SweepRun, cases: pd.DataFrame) -> list[str]:
         rows = []
         for _, r in bad.iterrows():
             for row in recs[int(r["case"])]["agreement"]["rows"]:
-                if not row["pass"]:
+                if row["pass"] is False:
                     rows.append((int(r["case"]), row["quantity"], fmt(row["diff"]),
                                  fmt(row["tolerance"]), row["tol_label"],
                                  _given(run, int(r["case"]))))

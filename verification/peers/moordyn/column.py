@@ -104,7 +104,7 @@ class MoorDynColumn:
             return ColumnResult(self, peer, note=peer.message, ok=peer.converged)
         bp = shifted(comp.bvp.profile, comp.s_shift)
         vf = {r["quantity"]: r for r in comp.rows}
-        own = agreement(bp, peer.profile, comp.depth)
+        own = agreement(bp, peer.profile, comp.depth, nodal=True)
         rows = []
         for r in own:
             tol, label, why = tolerance(r, self.segment_length)

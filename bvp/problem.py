@@ -1,0 +1,251 @@
+"""The boundary-value problem of a scene: the model on one domain, its boundary conditions,
+the starting guess and the starting mesh (what ``solve_bvp`` needs, and what the profile
+is built from).
+
+The model's pieces are the scene's segments with runs of identical segments merged
+(:func:`merged_runs`: a joint without a jump in any property needs no mesh pair; the
+profile still has a station at every joint). Forms (``_Problem.form``; the end forms in
+bvp/solver.py): ``tdp_tension``,
+``hang_off_angle`` and ``top_tension`` (touchdown at the origin; in the last two the
+suspended length of the first segment is the parameter p), and the fixed-ends forms
+``fixed_seabed`` (rigid seabed, anchor on it: the touchdown is p), ``fixed_liftoff``
+(elastic seabed, anchor on it: a contact zone [0, s_L] and the rest of the line as two
+blocks joined at the lift-off point s_L = p, where y = 0), ``fixed_elastic`` (the
+unilateral foundation everywhere), ``fixed_lifted`` and ``fixed_free`` (pinned ends).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from riser.scene import (
+    FixedEnds,
+    HangOffAngleEnds,
+    Scene,
+    TdpTensionEnds,
+    TopTensionEnds,
+)
+from riser.sections import segment_properties
+
+from . import guess as guesses
+from .catenary import catenary_state
+from .equations import IM, IT, ITH, IX, IY, NSTATE, BeamModel
+from .guess import BVPFailure
+from .layout import Layout
+from .output import grounded_drag
+
+
+@dataclass
+class _Problem:
+    """Everything solve_bvp needs for one scene, plus what is needed to build the profile."""
+
+    model: BeamModel
+    bc: object
+    guess_p: np.ndarray
+    form: str
+    anchor_xy: tuple = (0.0, 0.0)
+    first_total: float = 0.0           # full length of the first segment [m]
+    guess: object = None               # callable(tau) -> scaled state (6 blocks, m)
+    joints: np.ndarray = None          # s [m] of the scene's joints (merged ones included)
+    segments: int = 1                  # the scene's segment count
+
+    def mesh(self, nodes: int) -> np.ndarray:
+        """The starting mesh on tau (bvp.layout.Layout.mesh) for ``nodes`` on the line."""
+        return self.model.layout.mesh(nodes)
+
+
+def build_problem(scene: Scene, split: bool = True) -> _Problem:
+    """The problem of ``scene``. ``split``: on an elastic seabed with the anchor on it,
+    solve the contact zone (linear spring) and the rest of the line as two blocks joined
+    at an unknown lift-off point with y = 0 (see bvp/equations.py)."""
+    props = segment_properties(scene)
+    n = len(props)
+    EI = np.array([p.EI for p in props])
+    EA = (np.array([p.EA for p in props], float) if scene.axial_model == "extensible"
+          else np.full(n, np.inf))
+    w = np.array([p.weight for p in props])
+    L = np.array([p.length for p in props])
+    c_n = np.array([p.drag_normal_coef for p in props])
+    c_t = np.array([p.drag_tangential_coef for p in props])
+    ends = scene.ends
+    seg_ends = np.cumsum(L)                       # the scene's joints (and its end) [m]
+    first_total = float(L[0])
+    # pieces: runs of identical segments merged (a joint without a jump is no joint); the
+    # first segment stays alone where its length is the form's parameter
+    separate_first = isinstance(ends, (HangOffAngleEnds, TopTensionEnds)) or (
+        isinstance(ends, FixedEnds) and scene.seabed_model == "rigid")
+    groups = merged_runs(np.stack([EI, EA, w, c_n, c_t]), separate_first)
+    heads = np.array([g[0] for g in groups])
+    EI, EA, w, c_n, c_t = (a[heads] for a in (EI, EA, w, c_n, c_t))
+    L = np.array([float(np.sum(L[g])) for g in groups])
+    n = len(groups)
+    speed = grad = None
+    if scene.current is not None:
+        sign = math.cos(math.radians(scene.current.heading_deg))   # +1 or -1 (planar)
+        cur = scene.current
+        speed = lambda y: sign * cur.speed(y)                     # noqa: E731
+        grad = lambda y: sign * cur.speed_gradient(y)             # noqa: E731
+
+    length_scale = float(np.sum(L))
+    k_seabed = scene.seabed.stiffness if scene.seabed_model == "elastic" else 0.0
+
+    # ---- catenary starting guess for each form: (H, V0, suspended lengths, origin); the
+    # problem's form is the end form's kind, a fixed-ends one refined below (its boundary
+    # conditions: fixed_seabed, fixed_liftoff, fixed_elastic, fixed)
+    form = ends.kind
+    anchor = (0.0, 0.0)
+    free_first = False
+    extensible = scene.axial_model == "extensible"
+    cat_EA = None             # the elastic catenary between pinned ends (else inextensible)
+    if isinstance(ends, TdpTensionEnds):
+        H, V0, Ls = ends.tdp_tension, 0.0, L.copy()
+    elif isinstance(ends, HangOffAngleEnds):
+        free_first = True
+        H, V0, Ls = guesses.hang_off_angle(w, L, ends.hang_off_height,
+                                           math.radians(ends.hang_off_angle_deg))
+    elif isinstance(ends, TopTensionEnds):
+        free_first = True
+        H, V0, Ls = guesses.top_tension(w, L, ends.hang_off_height, ends.top_tension)
+    else:
+        anchor = ends.anchor
+        dx = ends.hang_off[0] - anchor[0]
+        dy = ends.hang_off[1] - anchor[1]
+        on_seabed = scene.seabed is not None and anchor[1] == 0.0
+        found = False
+        if on_seabed:
+            try:
+                H, V0, Ls = guesses.grounded(w, L, dx, dy, anywhere=k_seabed > 0.0)
+                found = True
+            except BVPFailure:
+                pass
+        if k_seabed > 0.0:
+            # a contact zone of at least a metre ahead of the anchor, else unilateral throughout
+            form = ("fixed_liftoff" if found and split and float(np.sum(L - Ls)) > 1.0
+                    else "fixed_elastic")
+        elif found:
+            form, free_first = "fixed_seabed", True
+        else:
+            # no touchdown ahead of the anchor: the line may lift off at the anchor,
+            # i.e. hang pinned there and rise from the seabed (checked after solving)
+            form = "fixed_lifted" if on_seabed else "fixed_free"
+        if not found:
+            cat_EA = EA if extensible else None
+            H, V0, Ls = guesses.free_hanging(w, L, dx, dy, cat_EA)
+
+    grounded = (float(np.sum(L - Ls))
+                if form in ("fixed_seabed", "fixed_elastic", "fixed_liftoff") else 0.0)
+    ox = anchor[0] + grounded
+    oy = anchor[1]
+    cat_top_T = float(catenary_state(np.array([Ls.sum()]), w, Ls, H, V0)["tension"][0])
+    Ts = max(cat_top_T, H, 1.0)
+    wref = max(float(np.max(np.abs(w))), Ts / length_scale * 1e-3)
+    EImax = float(np.max(EI))
+    scale = np.array([length_scale, length_scale, 1.0, EImax * wref / Ts,
+                      wref * math.sqrt(EImax / Ts), Ts])
+
+    sink = max(float(w[0]), 0.0) / k_seabed if k_seabed > 0.0 else 0.0
+    split_first = form == "fixed_liftoff"
+    cut, zone_layout = 0, None
+    if split_first:
+        # block 0: the contact zone [0, s_L], segments 0 .. cut - 1 and part of segment
+        # cut; block 1: the line from s_L (its first piece the rest of segment cut)
+        starts = np.concatenate([[0.0], np.cumsum(L)])
+        cut = int(np.clip(np.searchsorted(starts, grounded, side="left") - 1, 0, n - 1))
+        grounded = float(np.clip(grounded, starts[cut] + 1e-3 * L[cut],
+                                 starts[cut + 1] - 1e-3 * L[cut]))   # inside segment cut
+        zone_layout = Layout.proportional(np.concatenate([L[:cut], [grounded - starts[cut]]]))
+        start = np.concatenate([[starts[cut + 1] - grounded], L[cut + 1:]])
+        p0 = np.array([grounded / length_scale])
+    else:
+        start = Ls.copy() if free_first else L.copy()
+        p0 = np.array([Ls[0] / length_scale]) if free_first else np.zeros(0)
+    model = BeamModel(EI=EI, EA=EA, w=w, c_n=c_n, c_t=c_t, lengths=L.copy(), scale=scale,
+                      k_seabed=k_seabed, speed=speed, speed_gradient=grad,
+                      free_first_length=free_first or split_first, split_first=split_first,
+                      length_scale=length_scale, layout=Layout.proportional(start),
+                      zone_layout=zone_layout, cut=cut)
+    # the line lying on the seabed ahead of the touchdown (elastic forms), sunk by w/k
+    zone = (grounded, sink) if form in ("fixed_elastic", "fixed_liftoff") else (0.0, 0.0)
+
+    def guess(tau: np.ndarray) -> np.ndarray:
+        tau = np.asarray(tau, float)
+        S = model.s_of(tau, p0)
+        return np.concatenate([
+            guesses.state_guess(s, model.segment_at(tau, b), w, Ls, EI, H, V0, ox, oy, scale,
+                                *zone, EA=cat_EA)
+            for b, s in enumerate(S)])
+
+    return _Problem(model=model, bc=boundary_conditions(form, scene, model, L), guess_p=p0,
+                    form=form, anchor_xy=anchor, first_total=first_total, guess=guess,
+                    joints=seg_ends[:-1], segments=len(seg_ends))
+
+
+def merged_runs(props: np.ndarray, separate_first: bool) -> list[np.ndarray]:
+    """Runs of consecutive segments whose properties (rows of ``props``: EI, EA, w, c_n,
+    c_t per segment) are all equal, as arrays of segment indices; the first segment a run
+    of its own with ``separate_first``."""
+    runs = [[0]]
+    for k in range(1, props.shape[1]):
+        same = np.array_equal(props[:, k], props[:, k - 1])
+        if same and not (separate_first and k == 1):
+            runs[-1].append(k)
+        else:
+            runs.append([k])
+    return [np.array(r) for r in runs]
+
+
+def boundary_conditions(form: str, scene: Scene, model: BeamModel, L: np.ndarray):
+    """bc(ya, yb[, p]) -> scaled residuals; ya/yb have shape (6 blocks,): the bottom end is
+    block 0 at tau = 0, the top the last block at tau = 1."""
+    ends = scene.ends
+    sc = model.scale
+    top = (model.n_block - 1) * NSTATE
+
+    if form == "tdp_tension":
+        Tt = ends.tdp_tension / sc[IT]
+
+        def bc(ya, yb, p=None):
+            return np.array([ya[IX], ya[IY], ya[ITH], ya[IM], ya[IT] - Tt, yb[top + IM]])
+    elif form in ("hang_off_angle", "top_tension"):
+        Hh = ends.hang_off_height / sc[IY]
+        # the third condition at the top: the angle (form b) or the tension (J-lay)
+        i3, v3 = ((ITH, math.radians(ends.hang_off_angle_deg)) if form == "hang_off_angle"
+                  else (IT, ends.top_tension / sc[IT]))
+
+        def bc(ya, yb, p):
+            return np.array([ya[IX], ya[IY], ya[ITH], ya[IM],
+                             yb[top + IM], yb[top + IY] - Hh, yb[top + i3] - v3])
+    elif form == "fixed_seabed":
+        xa = ends.anchor[0]
+        xh, yh = ends.hang_off[0] / sc[IX], ends.hang_off[1] / sc[IY]
+        L0 = float(L[0])
+
+        def bc(ya, yb, p):
+            # touchdown at x = anchor + the stretched grounded length (L0 - suspended):
+            # integral of 1 + T/EA with T = T_tdp + f_t (g - s) along the grounded part
+            g = L0 - p[0] * model.length_scale
+            T0 = ya[IT] * sc[IT]
+            reach = g + (T0 * g + 0.5 * grounded_drag(model) * g * g) * model.inv_EA[0]
+            return np.array([ya[IX] - (xa + reach) / sc[IX], ya[IY], ya[ITH], ya[IM],
+                             yb[top + IM], yb[top + IX] - xh, yb[top + IY] - yh])
+    elif form == "fixed_liftoff":
+        xa = ends.anchor[0] / sc[IX]
+        xh, yh = ends.hang_off[0] / sc[IX], ends.hang_off[1] / sc[IY]
+
+        def bc(ya, yb, p):
+            # anchor pinned on y = 0; the zone's end joins the line's start; y = 0 at the
+            # lift-off point (the end of the contact zone)
+            return np.array([ya[IX] - xa, ya[IY], ya[IM],
+                             *(yb[:NSTATE] - ya[NSTATE:]),
+                             yb[top + IM], yb[top + IX] - xh, yb[top + IY] - yh, yb[IY]])
+    else:
+        xa, ya0 = ends.anchor[0] / sc[IX], ends.anchor[1] / sc[IY]
+        xh, yh = ends.hang_off[0] / sc[IX], ends.hang_off[1] / sc[IY]
+
+        def bc(ya, yb, p=None):
+            return np.array([ya[IX] - xa, ya[IY] - ya0, ya[IM],
+                             yb[top + IM], yb[top + IX] - xh, yb[top + IY] - yh])
+    return bc
