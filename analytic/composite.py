@@ -33,12 +33,18 @@ from .layers import anchor_layer, layer_length, pinned_end_correction, touchdown
 #: stations per boundary-layer length, and the layer lengths they cover
 PER_LAYER = 20
 LAYER_SPAN = 25.0
+#: the most evenly spaced stations along the line (a line longer than 200 km is sampled
+#: more coarsely than every 2 m: a hang-off angle 1e-6 deg from the horizontal solved a
+#: suspended length of 1e8 m, and 6e7 stations took 30 s and gigabytes)
+MAX_STATIONS = 100_000
 
 
 def stations(total: float, dense: list[tuple[float, float]]) -> np.ndarray:
-    """Arc lengths over [0, total]: every min(2 m, total/1000) plus, around each
-    (centre, lam) of ``dense``, LAYER_SPAN lam on either side at lam / PER_LAYER."""
-    parts = [np.linspace(0.0, total, int(math.ceil(total / min(2.0, total / 1000.0))) + 1)]
+    """Arc lengths over [0, total]: every min(2 m, total/1000) (at most MAX_STATIONS of
+    them) plus, around each (centre, lam) of ``dense``, LAYER_SPAN lam on either side at
+    lam / PER_LAYER."""
+    n = min(int(math.ceil(total / min(2.0, total / 1000.0))), MAX_STATIONS)
+    parts = [np.linspace(0.0, total, n + 1)]
     for centre, lam in dense:
         lo, hi = max(0.0, centre - LAYER_SPAN * lam), min(total, centre + LAYER_SPAN * lam)
         if hi > lo:

@@ -88,11 +88,17 @@ class TouchdownLayer:
 
     def correction(self, s: np.ndarray) -> tuple[np.ndarray, ...]:
         """y, y', y'', y''' of the correction C exp(-s/lambda) (+ B exp((s - end)/lambda)) at
-        ``s`` >= 0 from the lift-off point."""
+        ``s`` >= 0 from the lift-off point. The second term belongs to the beam part
+        [0, end] only and is 0 beyond ``end`` (where the catenary takes over and the caller
+        drops the correction; evaluated there it would overflow on a short layer)."""
         r = 1.0 / self.length
         s = np.asarray(s, float)
         e1 = self.C * np.exp(-r * s)
-        e2 = self.B * np.exp(r * (s - self.end)) if self.end is not None else 0.0 * s
+        if self.end is not None:
+            e2 = np.where(s <= self.end,
+                          self.B * np.exp(r * np.minimum(s - self.end, 0.0)), 0.0)
+        else:
+            e2 = 0.0 * s
         return e1 + e2, r * (e2 - e1), r * r * (e1 + e2), r ** 3 * (e2 - e1)
 
     def grounded(self, s: np.ndarray) -> tuple[np.ndarray, ...]:

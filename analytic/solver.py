@@ -16,11 +16,17 @@ delta = w lambda / H (the catenary's angle one layer length lambda = sqrt(EI/H) 
 touchdown), the composite solution is the catenary to O(eps^2) away from the ends and the
 linearised layer to O(delta^2) relative in it; delta = eps w L / H. The catenary model alone
 is O(1) wrong in the moment at the touchdown (its jump) and O(eps) in the shape.
+
+Refused beyond the expansion (analytic/forms.py): a composite or piecewise line whose eps
+exceeds ``forms.EPS_LIMIT`` or delta ``forms.DELTA_LIMIT`` (bending, not tension, shapes
+it: e.g. a line of 1e-3 N/m with EI 1e7 N m2), and a weight below :data:`MIN_WEIGHT`. A
+root search that fails for another reason ends ``not_converged`` with the place.
 """
 
 from __future__ import annotations
 
 import math
+import sys
 import time
 
 from riser import validity
@@ -33,11 +39,16 @@ from riser.settings import AnalyticSettings
 
 from . import forms
 from .composite import build
-from .forms import Line, NoEquilibrium, Unsupported
+from .forms import Line, NoEquilibrium, RootNotFound, Unsupported
 from .layers import layer_length
 
 #: eps or delta above this gets a validity warning (the neglected terms are their squares)
 VALIDITY_LIMIT = 0.1
+
+#: the smallest submerged weight [N/m] the closed forms compute with: the smallest normal
+#: float over the machine epsilon (~1e-292), so that w times a relative round-off is still
+#: a normal number (below it a 350 m hang-off catenary came out half its length)
+MIN_WEIGHT = sys.float_info.min / sys.float_info.epsilon
 
 
 def effects_of(scene: Scene) -> list[str]:
@@ -78,6 +89,12 @@ def line_of(scene: Scene) -> Line:
         raise UnsupportedSceneError(
             f"{src}: segments[0]: submerged weight {p0.weight:g} N/m; the analytic method "
             "needs a line that sinks (w > 0)")
+    if p0.weight < MIN_WEIGHT:
+        raise UnsupportedSceneError(
+            f"{src}: segments[0]: submerged weight {p0.weight:g} N/m is below the "
+            f"{MIN_WEIGHT:.3g} N/m the analytic method computes with: the closed forms' "
+            "ratios of force and weight (H/w, w s/H) reach the floating-point underflow "
+            "there and lose their digits")
     if not p0.EI > 0.0:
         raise UnsupportedSceneError(
             f"{src}: line_types.{scene.segments[0].line_type}.bending_stiffness: must be > 0 "
@@ -140,7 +157,12 @@ def _solve(scene: Scene) -> SolveResult:
         return result(Status.NO_EQUILIBRIUM, text if text.startswith("no equilibrium")
                       else f"no equilibrium: {text}")
     except Unsupported as exc:
-        raise UnsupportedSceneError(f"{scene.source}: ends: analytic refused: {exc}") from None
+        raise UnsupportedSceneError(f"{scene.source}: {exc.key}: analytic refused: {exc}"
+                                    ) from None
+    except RootNotFound as exc:
+        # not evidence that no equilibrium exists: the search failed, and says where
+        return result(Status.NOT_CONVERGED, f"not converged: the analytic outer problem: "
+                      f"{exc}; cross-check with --method bvp")
     threshold = None
     if model == "piecewise":
         if outer.kind != "touchdown":

@@ -191,16 +191,19 @@ def grounded_drag(model: BeamModel) -> float:
 
 
 def lift_off(prob, sol, p: np.ndarray, c: dict) -> float | None:
-    """Arc length [m] where the line, in contact (y <= 0) from its bottom end, first rises
-    above the seabed: the root of y(s) = 0 on the collocation solution (None when the bottom
-    end is not in contact or the whole line is). One block (the unilateral form)."""
+    """Arc length [m] where the line's first contact zone from the bottom (y <= 0; the
+    anchor on y = 0 up to round-off, or further on for an anchor above the seabed) ends,
+    rising above the seabed: the root of y(s) = 0 on the collocation solution (None when
+    no point is in contact or the whole line is from there on). One block (the
+    unilateral form)."""
     y = c["y"]
-    if y[0] > 1e-9:                  # the anchor sits on y = 0 up to round-off
+    on = np.flatnonzero(y <= 1e-9)
+    if on.size == 0:
         return None
-    up = np.flatnonzero(y[1:] > 0.0)
+    up = np.flatnonzero(y[on[0] + 1:] > 0.0)
     if up.size == 0:
         return None
-    j = int(up[0]) + 1
+    j = int(on[0]) + int(up[0]) + 1
     sa, sb = float(c["s"][j - 1]), float(c["s"][j])
     model = prob.model
 

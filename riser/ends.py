@@ -80,7 +80,11 @@ class FixedEnds(Ends):
 
     kind: ClassVar[str] = "fixed"
     anchor: tuple[float, float] = spec(kind="numbers", length=2, ge=-MAX_COORDINATE,
-                                       le=MAX_COORDINATE, unit="m", also="y >= 0",
+                                       le=MAX_COORDINATE, unit="m",
+                                       also="y >= 0, <= water_depth; with a [seabed], a y "
+                                            "within 5 % of the bottom line's outer diameter is "
+                                            "put on it "
+                                            "(y = 0)",
                                        doc="(x, y) of the bottom end")
     hang_off: tuple[float, float] = spec(kind="numbers", length=2, ge=-MAX_COORDINATE,
                                          le=MAX_COORDINATE, unit="m",

@@ -20,14 +20,18 @@ MAX_COORDINATE = 1.0e5
 @dataclass(frozen=True)
 class Current(Part):
     """Current profile: speed [m/s] piecewise linear in height y [m], constant beyond.
+    Heights are measured up from the seabed (>= 0); the scene checks that they stay below
+    the surface (``Scene.current_reference_height``).
 
     Speeds are signed along ``heading_deg`` (0 = +x, in plane; 90 = +z, out of plane), so a
     current that reverses with height is expressed with speeds of both signs.
     """
 
-    heights: tuple[float, ...] = spec(kind="numbers", ge=-MAX_COORDINATE, le=MAX_COORDINATE,
-                                      unit="m", also="strictly increasing",
-                                      doc="heights y of the profile's points")
+    heights: tuple[float, ...] = spec(kind="numbers", ge=0.0, le=MAX_COORDINATE,
+                                      unit="m", also="strictly increasing; <= water_depth "
+                                      "(without it, <= the hang-off height the ends give)",
+                                      doc="heights y of the profile's points, up from the "
+                                          "seabed")
     speeds: tuple[float, ...] = spec(kind="numbers", ge=-10.0, le=10.0, unit="m/s",
                                      also="as many as heights",
                                      doc="signed speed along the heading at each height")

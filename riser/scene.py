@@ -63,6 +63,15 @@ ENV = "environment"
 #: hang-off height at the surface to round-off (1 ulp above it for kang2015-jlay)
 SURFACE_ROUND_OFF = 1e-12
 
+#: an anchor of a scene with a [seabed] less than this fraction of the bottom line type's
+#: outer diameter above the seabed is put on it (y = 0, with a note in ``Scene.notes``):
+#: 1 cm for a 0.2 m pipe, about twice its static penetration into a soft clay (w / k = 5 mm
+#: for the Wang pipe on 1e5 N/m2). An anchor typed 1 mm above the seabed otherwise
+#: makes a different problem: a line hanging from the anchor onto the seabed, with no
+#: touchdown of the anchor's contact zone (the BVP's lift-off form and every report of
+#: the touchdown start from an anchor at y = 0).
+ANCHOR_SNAP_FRACTION = 0.05
+
 #: the keys of [model]: the continuum model, when not the end form's default
 MODEL_KEYS = {
     "axial": Spec(kind="string", choices=("extensible", "inextensible"), optional=True,
@@ -106,6 +115,9 @@ class Scene:
                                 default_factory=VFIFESettings)
     model: dict = field(default_factory=dict)
     source: str = "<scene>"
+    #: the anchor height [m] the input gave when the scene put the anchor on the seabed
+    #: (no field: not a key of the file; kept by :meth:`replace` while the anchor is)
+    _anchor_given = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.source, str):
@@ -120,7 +132,10 @@ class Scene:
         if self.internal_flow is not None:
             check_internal_flow(self)
         self._check_model()
+        self._snap_anchor()
         self._check_geometry()
+        self._check_current()
+        self._check_top_motion()
 
     def error(self, key: str, message: str) -> SceneError:
         """A SceneError of this scene's source naming ``key``."""
@@ -165,6 +180,94 @@ class Scene:
                                     "it [N] or youngs_modulus, or set [model] axial = "
                                     "\"inextensible\"")
 
+    def _snap_anchor(self) -> None:
+        """Put an anchor within :data:`ANCHOR_SNAP_FRACTION` of the bottom line's diameter
+        above a [seabed] on it (y = 0), remembering the given height for :attr:`notes`."""
+        e = self.ends
+        if not (isinstance(e, FixedEnds) and self.seabed is not None
+                and 0.0 < e.anchor[1] <= self.anchor_snap_tolerance):
+            return
+        object.__setattr__(self, "_anchor_given", float(e.anchor[1]))
+        object.__setattr__(self, "ends", FixedEnds(anchor=(e.anchor[0], 0.0),
+                                                   hang_off=e.hang_off))
+
+    @property
+    def anchor_snapped_from(self) -> float | None:
+        """The anchor height [m] the input gave when the scene put the anchor on the
+        seabed (within :attr:`anchor_snap_tolerance`), else None; said by :attr:`notes`."""
+        return self._anchor_given
+
+    @property
+    def anchor_snap_tolerance(self) -> float:
+        """[m] An anchor at most this high above a [seabed] is put on it:
+        :data:`ANCHOR_SNAP_FRACTION` of the bottom segment's outer diameter."""
+        bottom = self.line_types[self.segments[0].line_type]
+        return ANCHOR_SNAP_FRACTION * bottom.outer_diameter
+
+    @property
+    def notes(self) -> tuple[str, ...]:
+        """Sentences on what the scene changed of its input (an anchor put on the seabed);
+        a result of the scene says them."""
+        if self.anchor_snapped_from is None:
+            return ()
+        note = (f"note: ends.anchor[1] = {self.anchor_snapped_from:g} m is within "
+                f"{self.anchor_snap_tolerance:.3g} m ({ANCHOR_SNAP_FRACTION:g} of the bottom "
+                "line's outer diameter) of the seabed, so the anchor was put on it (y = 0)")
+        return (note,)
+
+    @property
+    def current_reference_height(self) -> tuple[float, str] | None:
+        """The highest height [m] a current profile may name, and what it is: the water
+        depth; without one, the highest end the scene gives (the hang-off height of forms
+        (b) and (d), the higher of the fixed ends); None for the touchdown-tension form
+        without a water depth (its hang-off is an output)."""
+        e = self.ends
+        if self.water_depth is not None:
+            return self.water_depth, "the water depth (environment.water_depth)"
+        why = ("with no environment.water_depth the hang-off is the highest point the "
+               "current acts on; give water_depth for a profile up to the surface")
+        if isinstance(e, FixedEnds):
+            top, which = max((e.hang_off[1], "hang-off"), (e.anchor[1], "anchor"))
+            return top, f"the {which} height ({why})"
+        if isinstance(e, (HangOffAngleEnds, TopTensionEnds)):
+            return e.hang_off_height, f"the hang-off height ({why})"
+        return None
+
+    def _check_current(self) -> None:
+        """The current's heights lie between the seabed (y = 0, the spec) and the surface
+        (:attr:`current_reference_height`): a profile typed in the wrong frame (from the
+        surface, in km) would otherwise be read far from the line, silently."""
+        ref = self.current_reference_height
+        if self.current is None or ref is None:
+            return
+        top, what = ref
+        for i, h in enumerate(self.current.heights):
+            if h > top * (1.0 + SURFACE_ROUND_OFF):
+                raise self.error(f"environment.current.heights[{i}]", f"must be <= {top:g} m, "
+                                 f"{what}: heights are measured up from the seabed y = 0; "
+                                 f"got {h:g}")
+
+    def _check_top_motion(self) -> None:
+        """A vertical top motion keeps the hang-off above the seabed (where the scene gives
+        the hang-off height)."""
+        dyn, e = self.dynamics, self.ends
+        tm = None if dyn is None else dyn.top_motion
+        if tm is None or tm.axis != "y":
+            return
+        if isinstance(e, FixedEnds):
+            top = e.hang_off[1]
+        elif isinstance(e, (HangOffAngleEnds, TopTensionEnds)):
+            top = e.hang_off_height
+        else:
+            return
+        low = tm.lowest_displacement
+        if top + low <= 0.0:
+            key = "amplitude" if tm.times is None else (
+                f"displacements[{tm.displacements.index(min(tm.displacements))}]")
+            raise self.error(f"dynamics.top_motion.{key}", f"moves the hang-off {-low:g} m "
+                             f"down from its height {top:g} m, to or below the seabed y = 0: "
+                             f"must be < {top:g} m down")
+
     def _check_geometry(self) -> None:
         """Physically impossible but well-formed scenes are refused before solving."""
         e, depth, length = self.ends, self.water_depth, self.total_length
@@ -181,6 +284,9 @@ class Scene:
             if depth is not None and e.hang_off[1] > surface:
                 raise self.error("ends.hang_off[1]", f"must be <= water_depth {depth:g} m "
                                  f"(the model is fully submerged), got {e.hang_off[1]:g}")
+            if depth is not None and e.anchor[1] > surface:
+                raise self.error("ends.anchor[1]", f"must be <= water_depth {depth:g} m "
+                                 f"(the model is fully submerged), got {e.anchor[1]:g}")
         if isinstance(e, (HangOffAngleEnds, TopTensionEnds)):
             if depth is not None and e.hang_off_height > surface:
                 raise self.error("ends.hang_off_height", f"must be <= water_depth {depth:g} "
@@ -235,7 +341,11 @@ class Scene:
         ``"environment.current.speeds"``, ``"line_types.steel.drag_normal"``,
         ``"vfife.expert.static_damping"``): the part is rebuilt and a bad value is named
         by its key path, exactly as the file would name it."""
-        return dataclasses.replace(self, **replaced(self, changes))
+        new = dataclasses.replace(self, **replaced(self, changes))
+        if (self._anchor_given is not None and new._anchor_given is None
+                and new.ends == self.ends and new.seabed is not None):
+            object.__setattr__(new, "_anchor_given", self._anchor_given)   # still put there
+        return new
 
 
 def require_axial_stiffness(scene: Scene, message: str) -> None:

@@ -4,7 +4,16 @@ from __future__ import annotations
 
 import dataclasses
 
-from .scene import FixedEnds, Scene, Seabed, require_axial_stiffness
+import numpy as np
+
+from .scene import (
+    SURFACE_ROUND_OFF,
+    Current,
+    FixedEnds,
+    Scene,
+    Seabed,
+    require_axial_stiffness,
+)
 
 #: Seabed stiffness [N/m2] (force per metre of line per metre of penetration) given to a
 #: touchdown-form scene without a [seabed] when it becomes a fixed-ends scene: a soft
@@ -30,6 +39,10 @@ def fixed_ends_scene(scene: Scene, hang_off_xy, seabed_length: float, *,
     speeds up the static relaxation and damps contact chatter; no effect on the
     equilibrium). The copy is the model both methods can solve: extensible on the elastic
     seabed ([model] keys dropped, the fixed-ends defaults), so every line type needs EA.
+    Without a water depth the copy's current heights must not pass its hang-off (the
+    reference of a scene without a surface, ``Scene.current_reference_height``): a
+    touchdown-tension scene's profile is cut at the solved hang-off height, with the speed
+    there (the same speeds along the whole line).
     """
     require_axial_stiffness(scene, "required to convert the scene to fixed ends on an elastic "
                             "seabed (the extensible model both methods solve)")
@@ -47,4 +60,20 @@ def fixed_ends_scene(scene: Scene, hang_off_xy, seabed_length: float, *,
         seabed = dataclasses.replace(seabed, stiffness=float(seabed_stiffness))
     ends = FixedEnds(anchor=(-float(seabed_length), 0.0),
                      hang_off=(float(hang_off_xy[0]), float(hang_off_xy[1])))
-    return scene.replace(segments=tuple(segs), ends=ends, seabed=seabed, model={})
+    current = scene.current
+    if scene.water_depth is None and current is not None:
+        current = _cut_at(current, float(hang_off_xy[1]))
+    return scene.replace(segments=tuple(segs), ends=ends, seabed=seabed, model={},
+                         current=current)
+
+
+def _cut_at(current: Current, top: float) -> Current:
+    """``current`` with its heights above ``top`` [m] replaced by one point at ``top``
+    carrying the profile's speed there (the same speeds at and below ``top``)."""
+    h = current.heights
+    if h[-1] <= top * (1.0 + SURFACE_ROUND_OFF):
+        return current
+    keep = [i for i, y in enumerate(h) if y < top]
+    speed = float(np.interp(top, h, current.speeds))
+    return current.replace(heights=tuple(h[i] for i in keep) + (top,),
+                           speeds=tuple(current.speeds[i] for i in keep) + (speed,))

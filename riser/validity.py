@@ -21,7 +21,9 @@ the console; ``--strict`` turns them into exit 1). The names:
   for the J-lay form, whose file length includes the line on the seabed).
 
 The solvers add two names of their own: ``resolution`` (VFIFE elements long against the
-bending lengths) and ``ignored_input`` (a key the method does not model).
+bending lengths) and ``ignored_input`` (a key the method does not model); the pipeline
+adds ``ends_conversion`` to a VFIFE result of a touchdown-form scene whose fixed-ends
+equivalent departs from the scene's own model (``verification.pipeline``).
 
 Conventions: SI units; y up from the seabed (y = 0), the surface at ``water_depth``; s the
 unstretched arc length from the bottom end.

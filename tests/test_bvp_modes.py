@@ -202,7 +202,7 @@ def test_refusals():
         99.9, (0.0, 10.0), (100.0, 10.0),
         line_type={"outer_diameter": 0.2, "mass_per_length": 10.0, "axial_stiffness": 1e8,
                    "bending_stiffness": 1.0},
-        environment={"current": {"heights": [0.0, 20.0], "speeds": [1.0, 1.0],
+        environment={"current": {"heights": [0.0, 10.0], "speeds": [1.0, 1.0],
                                  "heading_deg": 90.0}}))
     res = solve_modes(cur)
     assert res.status.value == "refused" and "not planar" in res.message

@@ -165,9 +165,6 @@ def _bad(text, tmp_path, capsys, profile=None):
 BAD = {
     # name: (edit of the good deck, the line the error must name, words it must hold)
     "syntax error": (lambda t: t.replace("  86.8279", "  8x6.8279"), r"^steel ", "not a number"),
-    "unknown option": (lambda t: t.replace("1.0                      dtIC",
-                                           "1.0                      dtICC"), r"dtICC",
-                       "unknown option 'dtICC'"),
     "missing EI": (lambda t: re.sub(r"(?m)^(steel(?:\s+\S+){4})\s+\S+", r"\1", t), r"^steel ",
                    "EI is missing"),
     "EI zero": (lambda t: re.sub(r"(?m)^(steel(?:\s+\S+){4})\s+\S+", r"\1  0", t), r"^steel ",
@@ -197,9 +194,15 @@ BAD = {
                            r"^1  steel", "rod end"),
     "waves": (lambda t: t.replace("0                        writeLog", "0 writeLog\n2 WaveKin"),
               r"^2 WaveKin", "waves"),
-    "v1 deck": (lambda t: t.replace("POINTS ----", "NODE PROPERTIES ----"), r"NODE PROPERTIES",
-                "v1 format"),
-    "missing depth": (lambda t: re.sub(r"(?m)^\S+\s+WtrDpth.*\n", "", t), None, "WtrDpth"),
+    # MoorDyn v1's lines (UnstrLen third); its headers (NODE PROPERTIES, SOLVER OPTIONS)
+    # are v2 headers to MoorDyn-C 2.7 (tests/test_moordyn_decks.py)
+    "v1 deck": (lambda t: t.replace("ID   LineType   AttachA   AttachB   UnstrLen",
+                                    "Line LineType   UnstrLen NumSegs NodeAnch").replace(
+        "1  steel  1  2  2000  20  -", "1  steel  2000.0  20  1  2  -"), r"^1  steel",
+                "MoorDyn v1's layout"),
+    # no WtrDpth and no point below the surface: MoorDyn-C's depth is 0
+    "no depth": (lambda t: re.sub(r"(?m)^\S+\s+WtrDpth.*\n", "", t).replace(
+        "1  Fixed  0  0  -1000", "1  Fixed  0  0  0"), None, "water depth must be > 0"),
 }
 
 

@@ -157,7 +157,7 @@ def test_a_malformed_address_fails_in_one_line(sweep_file, tmp_path, address, sa
     out = tmp_path / "out"
     code, stdout, err = _cli(["sweep", str(sweep_file), "--scheduler", address,
                               "--out", str(out)], connect_timeout_s=2.0)
-    assert code == 1, err
+    assert code == 2, err                      # bad input (it was exit 1)
     lines = err.splitlines()
     assert len(lines) == 1 and lines[0].startswith("error:"), err
     assert address in lines[0] and says in lines[0]

@@ -89,10 +89,12 @@ def test_heave_out_of_the_water_modelled_and_warned(run_cli, tmp_path):
 
 # ----------------------------------------------------------------- named warnings after
 def test_large_strain_in_dynamics_warned_and_strict(run_cli, tmp_path):
-    # 300 m of surge in 3 s stretches the steel far beyond 1 % (T/EA from the envelope)
+    # the 6 m heave started impulsively: T/EA reaches 0.13 % during the dynamics (from the
+    # envelope), beyond a 0.04 % limit the static state (0.037 %) stays below. (It was 300
+    # m of surge in 8 s, 235 m/s: refused now as an implausible top motion.)
     path = edited(tmp_path, "hard-large-heave",
-                  ('axis = "y", amplitude = 6.0, period = 8.0, ramp_time = 8.0',
-                   'axis = "x", amplitude = 300.0, period = 8.0, ramp_time = 0.0'),
+                  ("ramp_time = 8.0 }", "ramp_time = 0.0 }"),
+                  ("drag_tangential = 0.03", "drag_tangential = 0.03\nmax_strain = 4e-4"),
                   ("duration = 60.0", "duration = 3.0"), ("element_length = 2.0", "element_length = 5.0"))
     out = tmp_path / "o"
     code, _, err = run_cli(["solve", path, "--method", "vfife", "--out", str(out)])

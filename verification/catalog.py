@@ -6,7 +6,7 @@ import difflib
 from pathlib import Path
 
 from riser.errors import SceneError
-from riser.io.scene_file import load_scene
+from riser.io.scene_file import is_file, load_scene, path_problem
 from riser.scene import Scene
 
 SCENE_DIR = Path(__file__).parent / "scenes"
@@ -27,12 +27,12 @@ def resolve(name_or_path: str) -> Scene:
     """
     p = Path(name_or_path)
     paths = builtin_paths()
-    if p.is_file():
+    if is_file(p):
         return load_scene(p)
     if name_or_path in paths:
         return load_scene(paths[name_or_path])
-    if p.exists() or p.is_symlink():        # a directory, a device, a dangling link
-        return load_scene(p)
+    if path_problem(p) is not None or p.exists() or p.is_symlink():
+        return load_scene(p)     # a name too long, a directory, a device, a dangling link
     near = difflib.get_close_matches(p.stem if p.suffix == ".toml" else name_or_path,
                                      list(paths), n=1, cutoff=0.75)
     hint = f"; did you mean the built-in '{near[0]}'?" if near else ""

@@ -10,6 +10,13 @@ of that touchdown, so that the touchdown is free to move (``riser.transform``). 
 fixed-ends scene is the model both methods solve (extensible, elastic seabed). Its arc
 lengths are reported in the scene's own coordinate, from the BVP touchdown: the converted
 scene's s minus the added length (negative s lies on the added line).
+
+A VFIFE result of a converted scene says so: its message ends with the conversion note
+(``info['ends_conversion']``), it carries the BVP's warnings of the solve the conversion
+started from, and it warns (``ends_conversion: ...``) when its hang-off angle or a tension
+the form gives departs from the scene's own model by more than :data:`ANGLE_DEPARTURE_DEG`
+or :data:`TENSION_DEPARTURE` (it then solved a different problem). A result also ends with
+the scene's own notes (``Scene.notes``: an anchor put on the seabed).
 """
 
 from __future__ import annotations
@@ -24,10 +31,29 @@ from riser import validity
 from riser.errors import SolveFailed, UnsupportedSceneError
 from riser.profile import Profile
 from riser.result import METHODS, DynamicsResult, SolveResult, Status
-from riser.scene import FixedEnds, Scene
+from riser.scene import (
+    FixedEnds,
+    HangOffAngleEnds,
+    Scene,
+    TdpTensionEnds,
+    TopTensionEnds,
+)
 from riser.transform import fixed_ends_scene
 from vfife.dynamic_outputs import ARC_LENGTH_COLUMNS, ARC_LENGTH_KEYS
 from vfife.ends import require_vfife_model
+
+#: [deg] a VFIFE hang-off angle this far from the BVP's of the scene's own model (the
+#: given angle of form (b)) is warned: the conversion solved a different problem. The
+#: conversion's model difference (stretch T/EA, the elastic seabed) moves the angle by at
+#: most 0.006 deg on the built-in Wang scenes and 0.018 deg on Kang's J-lay (measured at
+#: 2 m elements); the Wang riser's 11.12 deg from the vertical typed as 12 deg from the
+#: horizontal moved it by 7.4 deg (and the hang-off tension by -64 %).
+ANGLE_DEPARTURE_DEG = 0.5
+#: a VFIFE hang-off tension (the given top tension of the J-lay form) or touchdown tension
+#: (the given one of form (a)) this far (fraction) from the BVP's of the scene's own model
+#: is warned; the model difference moves them by at most 0.1 % on the built-in scenes
+#: (Wang: -0.097 % at the touchdown, -0.015 % at the top; Kang: -0.074 % at the top)
+TENSION_DEPARTURE = 0.01
 
 
 @dataclass(frozen=True)
@@ -124,8 +150,75 @@ def solve_scene(scene: Scene, method: str, *, tolerance: float | None = None,
         progress(f"{method}: solving")
     solve = importlib.import_module(m.package).solve
     if not m.fixed_ends_only or isinstance(scene.ends, FixedEnds):
-        return solve(scene, **kwargs)
-    return _solve_converted(scene, solve, kwargs, progress)
+        return with_notes(solve(scene, **kwargs), scene)
+    return with_notes(_solve_converted(scene, solve, kwargs, progress), scene)
+
+
+def with_notes(res: SolveResult, scene: Scene) -> SolveResult:
+    """``res`` with the scene's notes (``Scene.notes``: what the scene changed of its
+    input) at the end of its message and in ``info['scene_notes']``."""
+    if not scene.notes:
+        return res
+    return res.replace(message="; ".join((res.message, *scene.notes)),
+                       info={**res.info, "scene_notes": list(scene.notes)})
+
+
+def conversion_warnings(scene: Scene, eq: VfifeEquivalent, res: SolveResult) -> list[str]:
+    """The warnings a VFIFE result of the converted ``scene`` adds to its own: those of the
+    BVP solve the conversion started from (``eq.paper``; not ``ignored_input``, which names
+    what the VFIFE models), and ``ends_conversion`` when the result's hang-off angle or the
+    tension the form gives departs from that BVP solution (the scene's own model) by more
+    than :data:`ANGLE_DEPARTURE_DEG` / :data:`TENSION_DEPARTURE`."""
+    if eq.paper is None:
+        return []
+    # the BVP's ignored_input ([dynamics], seabed friction) is what the VFIFE does model
+    out = [f"{w} (in the BVP solution of the scene's own model that the conversion to fixed "
+           "ends started from)" for w in eq.paper.warnings if not w.startswith("ignored_input")]
+    if not res.converged or res.profile is None:
+        return out
+    bvp_sm, sm = eq.paper.summary(), res.summary()
+    e = scene.ends
+    given = {HangOffAngleEnds: "the given hang-off angle", TopTensionEnds:
+             "the given top tension", TdpTensionEnds: "the given touchdown tension"}[type(e)]
+    departs = []
+    d_angle = sm["hang_off_angle_deg"] - bvp_sm["hang_off_angle_deg"]
+    if abs(d_angle) > ANGLE_DEPARTURE_DEG:
+        departs.append(f"hang-off angle {sm['hang_off_angle_deg']:.3f} deg against "
+                       f"{bvp_sm['hang_off_angle_deg']:.3f} deg ({d_angle:+.3f} deg, beyond "
+                       f"{ANGLE_DEPARTURE_DEG:g} deg)")
+    tensions = [("hang-off tension", "hang_off_tension")]
+    if isinstance(e, TdpTensionEnds):
+        tensions.append(("touchdown tension", "tdp_tension"))
+    for label, key in tensions:
+        ref, got = bvp_sm.get(key), sm.get(key)
+        if ref is None:
+            continue
+        if got is None:
+            departs.append(f"no {label} (no touchdown found) against {ref / 1e3:.2f} kN")
+            continue
+        rel = (got - ref) / abs(ref)
+        if abs(rel) > TENSION_DEPARTURE:
+            departs.append(f"{label} {got / 1e3:.2f} kN against {ref / 1e3:.2f} kN "
+                           f"({100 * rel:+.2f} %, beyond {100 * TENSION_DEPARTURE:g} %)")
+    if departs:
+        model = ", ".join(f"{k} {v}" for k, v in eq.paper.model.items()
+                          if k != "seabed_stiffness")
+        out.append(f"ends_conversion: the VFIFE solved the fixed-ends equivalent (extensible, "
+                   f"on an elastic seabed), which departs from the BVP solution of the "
+                   f"scene's own {scene.ends.kind} form ({model}; {given} is "
+                   f"{_given_value(e)}): {'; '.join(departs)}: it solved a different "
+                   "problem; check the ends (a first_segment_length warning points at the "
+                   "hang-off angle) and read the BVP result")
+    return out
+
+
+def _given_value(ends) -> str:
+    """The value a touchdown form gives, as a warning says it."""
+    if isinstance(ends, HangOffAngleEnds):
+        return f"{ends.hang_off_angle_deg:g} deg from the horizontal"
+    if isinstance(ends, TopTensionEnds):
+        return f"{ends.top_tension / 1e3:g} kN"
+    return f"{ends.tdp_tension / 1e3:g} kN"
 
 
 def _solve_converted(scene: Scene, solve, kwargs: dict, progress) -> SolveResult:
@@ -146,5 +239,7 @@ def _solve_converted(scene: Scene, solve, kwargs: dict, progress) -> SolveResult
     for key in ARC_LENGTH_KEYS:
         if info.get(key) is not None:
             info[key] -= eq.s_shift
+    warnings = [*res.warnings, *conversion_warnings(scene, eq, res)]
     return res.replace(scene=scene.name, profile=shifted(res.profile, eq.s_shift),
-                       dynamics=shifted_dynamics(res.dynamics, eq.s_shift), info=info)
+                       dynamics=shifted_dynamics(res.dynamics, eq.s_shift), info=info,
+                       warnings=warnings, message=f"{res.message}; {eq.note}")

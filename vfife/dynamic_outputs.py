@@ -37,14 +37,18 @@ ENVELOPE = ("s", "tension_min", "tension_max", "moment_max", "curvature_max", "y
 
 
 def touchdown_s(s: np.ndarray, y: np.ndarray, has_seabed: bool) -> float | None:
-    """Arc length [m] of the touchdown point: the last node from the bottom in contact
-    (y <= 0), refined by linear interpolation of the height to the crossing of y = 0;
-    None without a seabed or when the bottom node is off it."""
+    """Arc length [m] of the touchdown point: the end towards the hang-off of the first
+    contact zone from the bottom (nodes with y <= 0), refined by linear interpolation of
+    the height to the crossing of y = 0; None without a seabed or when no node is on it.
+    An anchor above the seabed whose line reaches it further on has its touchdown there
+    too (it reported none before, however much line lay on the seabed)."""
     if not has_seabed:
         return None
-    contact = y <= 0.0
-    if not contact[0]:
+    on = np.flatnonzero(y <= 0.0)
+    if on.size == 0:
         return None
+    s, y = s[on[0]:], y[on[0]:]
+    contact = y <= 0.0
     i = int(np.argmin(contact)) - 1 if not np.all(contact) else len(s) - 1
     if i < 0:
         return None

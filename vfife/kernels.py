@@ -51,7 +51,19 @@ from numba import njit
 # vectoriser ("unsafe indirect dependence"); unsigned indices are not wrapped. Mixed
 # uint64/int64 arithmetic gives float64 in Numba, so offsets are uint64 too (``one``).
 _FM = {"contract", "arcp", "reassoc", "nsz"}
-_JIT = dict(cache=True, error_model="numpy", fastmath=_FM, nogil=True)
+# forceinline (LLVM 'alwaysinline'; inherited by the Numba functions compiled for them,
+# np.cross, np.zeros): reproducible bits. Numba links a copy of every jitted callee into
+# its caller's module (weak, 'linkonce_odr') and optimises that copy again with the
+# caller; with the fast-math flags the re-optimised copy rounds differently from the
+# callee's own library. A caller loaded from the on-disk cache calls its own copy, but
+# one compiled in this process calls the callee's own library (compiled first, during
+# the caller's typing, and the process-wide symbol wins over a weak one): the same
+# relaxation gave other bits on a cold cache than on a warm one (node_pass; 3e-9 in the
+# reports). Inlined, a caller has no call to resolve, so the code is the same whether
+# compiled or loaded. Costs a third more compile time on a cold cache (16 -> 21 s), nothing
+# per step (the bench kernels within +-5 %, the noise; docs/theory.md, Reproducibility;
+# tests/test_reproducible.py checks that no call is left).
+_JIT = dict(cache=True, error_model="numpy", fastmath=_FM, nogil=True, forceinline=True)
 # Vectorising the node passes: they read ~25 and write ~7 separate arrays, and since
 # Numba cannot tell LLVM that the arrays do not overlap, the vectoriser guards the SIMD
 # loop with a runtime overlap check per pair of pointers; above its default limit of 8

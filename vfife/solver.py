@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import time
 
 import numpy as np
@@ -177,11 +179,12 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
                "likely cause: time step above the critical step or an impossible geometry"
                if blew_up else
                f"static relaxation still creeping after {sinfo['steps']} steps: residual "
-               f"{sinfo['residual']:.3g} x element weight (tolerance {tol:g}) but an "
-               f"estimated {sinfo['creep_m']:.3g} m of displacement (creep tolerance "
-               f"{sinfo['creep_tolerance_m']:.3g} m), {sinfo['tension_to_come']:.3g} of the "
-               f"largest tension (tolerance {sinfo['tension_tolerance']:g}) and "
-               f"{sinfo['moment_to_come']:.3g} of the largest moment (tolerance "
+               f"{sinfo['residual']:.3g} x element weight (tolerance {tol:g}) but "
+               f"{_to_come(sinfo['creep_m'], ' m', 'displacement')} (creep tolerance "
+               f"{sinfo['creep_tolerance_m']:.3g} m), "
+               f"{_to_come(sinfo['tension_to_come'], '', 'the largest tension')} (tolerance "
+               f"{sinfo['tension_tolerance']:g}) and "
+               f"{_to_come(sinfo['moment_to_come'], '', 'the largest moment')} (tolerance "
                f"{sinfo['moment_tolerance']:g}) still to come; raise [vfife] max_steps"
                if sinfo["status"] is RelaxOutcome.CREEPING else
                f"static relaxation did not reach the tolerance {tol:g} in {sinfo['steps']} "
@@ -216,3 +219,14 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
                                "tension (k, n), moment (k, n))")
     return result(Status.CONVERGED, message, profile, solver_state=model,
                   dynamics=DynamicsResult(ts, env, states))
+
+
+def _to_come(value, unit: str, of: str) -> str:
+    """'an estimated 0.012 m of displacement' for a finite estimate of what is still to
+    come; infinite: the motion has not settled into one decaying mode, so there is no
+    estimate (it printed 'an estimated inf m'); NaN: that test was off."""
+    if value is None or math.isnan(value):
+        return f"no test on {of}"
+    if math.isinf(value):
+        return f"an amount of {of} not yet estimable (the motion has not settled)"
+    return f"an estimated {value:.3g}{unit} of {of}"

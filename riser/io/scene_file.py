@@ -13,7 +13,9 @@ refused before any solver runs.
 
 from __future__ import annotations
 
+import errno
 import math
+import os
 import tomllib
 from pathlib import Path
 
@@ -36,17 +38,54 @@ from .toml_table import Table
 
 
 # ---------------------------------------------------------------------- loading
-def load_scene(path: str | Path) -> Scene:
-    """Read and validate a scene file, UTF-8 TOML text of at most 1 MB (a UTF-8 byte-order
-    mark is accepted); raise :class:`SceneError` on any problem, including a file that is
-    not one: missing, a directory or device, unreadable, binary, UTF-16 or Latin-1."""
+#: the longest name of one file or folder most file systems take [bytes]
+NAME_MAX = 255
+
+
+def path_problem(path: str | Path) -> str | None:
+    """Why ``path`` cannot even be looked at (a name too long for the file system, a
+    component that is a file, a loop of links), or None: ``Path.exists`` and
+    ``Path.is_file`` raise OSError on such names instead of answering."""
+    try:
+        os.stat(path)
+    except FileNotFoundError:
+        # a missing folder above hides a name too long below it (ENOENT comes first)
+        if any(len(os.fsencode(part)) > NAME_MAX for part in Path(path).parts):
+            return os.strerror(errno.ENAMETOOLONG)
+        return None
+    except OSError as exc:
+        if exc.errno in (errno.ENAMETOOLONG, errno.ENOTDIR, errno.ELOOP, errno.EACCES):
+            return exc.strerror or str(exc)
+    except ValueError as exc:                       # an embedded NUL
+        return str(exc)
+    return None
+
+
+def is_file(path: str | Path) -> bool:
+    """``Path(path).is_file()`` that answers False instead of raising (see
+    :func:`path_problem`)."""
+    try:
+        return Path(path).is_file()
+    except (OSError, ValueError):
+        return False
+
+
+def read_text(path: str | Path, what: str = "a scene", limit: int = 1_000_000) -> str:
+    """The UTF-8 text of a TOML input file of at most ``limit`` bytes (a byte-order mark
+    is accepted); raise :class:`SceneError` naming the file on anything else: missing, a
+    name the file system refuses, a directory, a FIFO or device (never read: it could
+    block or never end), unreadable, binary, UTF-16 or Latin-1. ``what``: the input's
+    name in the messages ("a scene", "a sweep")."""
     path = Path(path)
-    where, limit = str(path), 1_000_000
+    where = str(path)
+    problem = path_problem(path)
+    if problem is not None:
+        raise SceneError(where, "", f"cannot read file ({problem})")
     try:
         if path.is_dir():
-            raise SceneError(where, "", "is a directory, not a scene file (a .toml file)")
+            raise SceneError(where, "", f"is a directory, not {what} file (a .toml file)")
         if path.exists() and not path.is_file():
-            raise SceneError(where, "", "is not a regular file (a scene is a .toml file)")
+            raise SceneError(where, "", f"is not a regular file ({what} is a .toml file)")
         with path.open("rb") as fh:
             data = fh.read(limit + 1)
     except OSError as exc:
@@ -59,18 +98,23 @@ def load_scene(path: str | Path) -> Scene:
     if kind is None and b"\x00" in data:
         kind = "binary data or UTF-16 text (it holds NUL bytes)"
     if kind is not None:
-        raise SceneError(where, "", f"is {kind}, not a scene: a scene is TOML text in UTF-8"
+        raise SceneError(where, "", f"is {kind}, not {what}: {what} is TOML text in UTF-8"
                          + (" (save it as UTF-8)" if "text" in kind else ""))
     if len(data) > limit:
         raise SceneError(where, "", f"is larger than {limit // 1_000_000} MB, too large for "
-                         "a scene file (TOML text of a few kB)")
+                         f"{what} file (TOML text of a few kB)")
     try:
-        text = data.decode("utf-8-sig")
+        return data.decode("utf-8-sig")
     except UnicodeDecodeError as exc:
         line = data[:exc.start].count(b"\n") + 1
         raise SceneError(where, "", f"is not UTF-8 text (byte 0x{data[exc.start]:02x} on line "
                          f"{line}; Latin-1 or Windows-1252?): save it as UTF-8") from None
-    return parse_scene(text, path.name)
+
+
+def load_scene(path: str | Path) -> Scene:
+    """Read and validate a scene file (:func:`read_text`: UTF-8 TOML text of at most
+    1 MB); raise :class:`SceneError` on any problem, including a file that is not one."""
+    return parse_scene(read_text(path), Path(path).name)
 
 
 def parse_scene(text: str, source: str = "<scene>") -> Scene:

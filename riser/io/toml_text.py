@@ -11,7 +11,7 @@ _BARE = re.compile(r"^[A-Za-z0-9_-]+$")
 
 
 def _key(k: str) -> str:
-    return k if _BARE.match(k) else '"' + k.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    return k if _BARE.match(k) else _string(k)
 
 
 def _value(v) -> str:
@@ -24,14 +24,38 @@ def _value(v) -> str:
             raise ValueError(f"cannot write {v!r} to a scene file")
         return repr(v)
     if isinstance(v, str):
-        return '"' + v.replace("\\", "\\\\").replace('"', '\\"').replace("\n", " ") + '"'
+        return _string(v)
     if isinstance(v, (list, tuple)):
         return "[" + ", ".join(_value(x) for x in v) + "]"
     raise TypeError(f"cannot write a {type(v).__name__} to a scene file")
 
 
+#: TOML's short escapes; every other control character is written as \\uXXXX
+_ESCAPES = {"\\": "\\\\", '"': '\\"', "\b": "\\b", "\t": "\\t", "\n": "\\n",
+            "\f": "\\f", "\r": "\\r"}
+
+
+def _string(v: str) -> str:
+    """A TOML basic string of ``v`` that reads back to ``v``: quotes, backslashes and
+    every control character (U+0000-U+001F, U+007F) escaped (a label with a raw \\x01
+    made a case's scene.toml unreadable; a newline was turned into a space)."""
+    out = []
+    for ch in v:
+        if ch in _ESCAPES:
+            out.append(_ESCAPES[ch])
+        elif ord(ch) < 0x20 or ord(ch) == 0x7F:
+            out.append(f"\\u{ord(ch):04X}")
+        else:
+            out.append(ch)
+    return '"' + "".join(out) + '"'
+
+
 def _comment_lines(notes) -> list[str]:
-    return [f"# {n}" if n else "#" for n in notes or ()]
+    """Comment lines of ``notes``: a note's line breaks and control characters (which end
+    or break a TOML comment) become spaces."""
+    clean = ["".join(" " if (ord(c) < 0x20 and c != "\t") or ord(c) == 0x7F else c
+                     for c in str(n)) if n else n for n in notes or ()]
+    return [f"# {n}" if n else "#" for n in clean]
 
 
 def dumps(data: dict, *, header=(), comments: dict | None = None) -> str:

@@ -11,24 +11,32 @@ matplotlib only when it runs (inside its function): loading them all costs ~3 s,
 
 Exit codes: 0 success; 1 a solver did not converge, a comparison failed, or an unexpected
 error (one line each, the reason printed); 2 bad input (a scene error naming the file and
-key, or a scene the method cannot represent, refused before solving); 130 interrupted.
+key, an option out of its range or not understood, or a scene the method cannot
+represent, refused before solving); 130 interrupted (one line, whatever the moment: while
+the program starts, runs or exits; :mod:`verification.runtime.interrupts`).
 """
 
 from __future__ import annotations
 
-import argparse
-import os
 import sys
 
-from riser.errors import SceneError, SolveFailed, UnsupportedSceneError
-from verification import peers
+try:                             # Ctrl-C while the program loads (numpy): one line, 130
+    import argparse
+    import os
 
-from . import bench, compare, solve, studies, sweep
-from .common import QUIET_HELP, err
+    from riser.errors import SceneError, SolveFailed, UnsupportedSceneError
+    from verification import peers
+    from verification.runtime.interrupts import exit_quietly_on_interrupt
+
+    from . import bench, compare, solve, studies, sweep
+    from .common import QUIET_HELP, Parser, err
+except KeyboardInterrupt:
+    print("error: interrupted", file=sys.stderr)
+    raise SystemExit(130) from None
 
 
 def build_parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="riser-verify", description=(
+    p = Parser(prog="riser-verify", description=(
         "Dual-method verification suite for deepwater risers (VFIFE and BVP)."))
     p.add_argument("-q", "--quiet", action="store_true", help=QUIET_HELP)
     sub = p.add_subparsers(dest="command", required=True)
@@ -45,7 +53,25 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    args = build_parser().parse_args(argv)
+    """Run ``riser-verify ARGV`` (None: the program's own arguments, and then a Ctrl-C
+    while the interpreter exits ends it at once with 130, no traceback); the exit code."""
+    try:
+        code = _run(argv)
+    except KeyboardInterrupt as exc:     # the message says what was kept (sweep)
+        if argv is None:                 # a second Ctrl-C now: 130 at once, no traceback
+            exit_quietly_on_interrupt(True)
+        err(str(exc) or "interrupted")
+        return 130
+    if argv is None:
+        exit_quietly_on_interrupt(code == 130)
+    return code
+
+
+def _run(argv: list[str] | None) -> int:
+    try:
+        args = build_parser().parse_args(argv)
+    except SystemExit as exc:            # --help (0), or the parser's one-line error (2)
+        return exc.code if isinstance(exc.code, int) else 2
     try:
         return args.func(args)
     except (SceneError, UnsupportedSceneError) as exc:
@@ -54,9 +80,6 @@ def main(argv: list[str] | None = None) -> int:
     except SolveFailed as exc:
         err(f"{exc} ({exc.status.value})")
         return 1
-    except KeyboardInterrupt:
-        err("interrupted")
-        return 130
     except BrokenPipeError:        # the reader went away (`riser-verify scenes | head`)
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())   # no flush error
         return 141                 # 128 + SIGPIPE, as a shell pipeline reports it

@@ -4,15 +4,21 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from riser.errors import SceneError
 from verification import peers
 from verification.catalog import resolve
 from verification.runtime import outdir
 
-from .common import check_overrides, out_folder, print_warnings, progress_for
+from .common import (ELEMENT_LENGTH, Range, add_ranged, check_overrides, check_ranges, out_folder,
+                     print_warnings, progress_for)
 
 #: most modes per plane the ``modes`` command computes (the BVP refines each one)
 MAX_MODES = 50
+#: --count of ``modes``
+COUNT = Range(1, MAX_MODES, integer=True, what="modes per plane")
+#: --peer-segment-length of ``compare`` (the peer checks it against the line too: at most
+#: a tenth of it)
+PEER_SEGMENT_LENGTH = Range(0.01, 1000.0, unit="m",
+                            what="the peer's segment length, at most a tenth of the line")
 
 
 def cmd_compare(args) -> int:
@@ -20,6 +26,8 @@ def cmd_compare(args) -> int:
     from verification.comparison.report import write
     files = outdir.COMPARE + tuple(f for name in peers.names() for f in peers.peer(name).files)
     outdir.clear(args.out, files)
+    # with --peer, the peer checks its segment length against the line (a tenth of it)
+    check_ranges(args, skip=("peer_segment_length",) if args.peer else ())
     scene = resolve(args.scene)
     out = out_folder(args, Path("out") / scene.name / "compare", files)
     check_overrides(scene, args)
@@ -49,9 +57,7 @@ def cmd_compare(args) -> int:
 def cmd_modes(args) -> int:
     from verification.comparison import modes
     outdir.clear(args.out, modes.FILES)
-    if not 1 <= args.count <= MAX_MODES:
-        raise SceneError("command line", "--count", f"must be between 1 and {MAX_MODES} (modes "
-                         f"per plane), got {args.count}")
+    check_ranges(args)
     scene = resolve(args.scene)
     out = out_folder(args, Path("out") / scene.name / "modes", modes.FILES)
     with progress_for(args, f"modes {scene.name}") as prog:
@@ -65,7 +71,8 @@ def add_parsers(sub) -> None:
     s = sub.add_parser("compare", help="solve a scene with both methods and compare them")
     s.add_argument("scene", help="built-in scene name or path to a .toml scene file")
     s.add_argument("--out", help="output directory (default out/SCENE/compare)")
-    s.add_argument("--element-length", type=float, help="vfife element length [m]")
+    add_ranged(s, "--element-length", ELEMENT_LENGTH, metavar="H",
+               help="vfife element length [m]")
     s.add_argument("--no-paper-model", action="store_true",
                    help="skip the secondary comparison with the BVP's paper model (inextensible "
                         "line on a rigid seabed), which is not part of the verdict")
@@ -74,12 +81,12 @@ def add_parsers(sub) -> None:
     s.add_argument("--peer", choices=peers.names(), help="add a peer code's profile as a "
                    "further column, not in the verdict (each peer is an optional extra: "
                    "pip install -e '.[NAME]')")
-    s.add_argument("--peer-segment-length", type=float, default=10.0,
-                   help="the peer's segment length [m] (default 10)")
+    add_ranged(s, "--peer-segment-length", PEER_SEGMENT_LENGTH, default=10.0, metavar="H",
+               help="the peer's segment length [m] (default 10)")
     s.set_defaults(func=cmd_compare)
     s = sub.add_parser("modes", help="natural modes about the static state, both methods")
     s.add_argument("scene", help="built-in scene name or path to a .toml scene file")
-    s.add_argument("--count", type=int, default=10,
-                   help="modes per plane (in-plane and out-of-plane; default 10)")
+    add_ranged(s, "--count", COUNT, default=10, metavar="N",
+               help="modes per plane (in-plane and out-of-plane; default 10)")
     s.add_argument("--out", help="output directory (default out/SCENE/modes)")
     s.set_defaults(func=cmd_modes)

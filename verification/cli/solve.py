@@ -8,7 +8,8 @@ from riser.result import METHODS, Status
 from verification.catalog import list_builtin, resolve
 from verification.runtime import outdir
 
-from .common import check_overrides, err, out_folder, print_warnings, progress_for
+from .common import (ELEMENT_LENGTH, TOLERANCE, add_ranged, check_overrides, check_ranges, err,
+                     out_folder, print_warnings, progress_for)
 
 
 def cmd_scenes(args) -> int:
@@ -22,6 +23,7 @@ def cmd_scenes(args) -> int:
 def cmd_solve(args) -> int:
     from verification import pipeline
     outdir.clear(args.out, outdir.SOLVE)      # before reading: bad input leaves nothing stale
+    check_ranges(args)
     scene = resolve(args.scene)
     out = out_folder(args, Path("out") / scene.name / args.method, outdir.SOLVE)
     check_overrides(scene, args)
@@ -38,25 +40,36 @@ def cmd_solve(args) -> int:
         return res.status.exit_code
     sm = res.summary()
     print(f"{scene.name} [{args.method}]: {res.message} in {res.wall_time_s:.3f} s")
-    print(f"  hang-off tension {sm['hang_off_tension'] / 1e3:.2f} kN, angle "
-          f"{sm['hang_off_angle_deg']:.3f} deg, at x = {sm['hang_off_x']:.2f} m, "
-          f"y = {sm['hang_off_height']:.2f} m")
-    if sm.get("tdp_x") is not None:
-        print(f"  touchdown x = {sm['tdp_x']:.2f} m, tension {sm['tdp_tension'] / 1e3:.2f} kN")
+    for line in summary_lines(sm, dynamic=res.dynamics is not None):
+        print(line)
     if res.dynamics is None:
-        print(f"  max tension {sm['max_tension'] / 1e3:.2f} kN, max moment "
-              f"{sm['max_moment'] / 1e3:.3f} kN m at s = {sm['max_moment_s']:.1f} m")
         print(f"  wrote {out}/profile.csv and summary.json")
         return print_warnings(res, args.strict)
-    from verification.report.dynamics import summary_lines, write_plots
+    from verification.report.dynamics import summary_lines as dynamic_lines, write_plots
     write_plots(res.dynamics, out, f"{scene.name} [{args.method}]", sm["statistics_start"])
-    print(f"  static: max tension {sm['max_tension'] / 1e3:.2f} kN, max moment "
-          f"{sm['max_moment'] / 1e3:.3f} kN m at s = {sm['max_moment_s']:.1f} m")
-    for line in summary_lines(sm):
+    for line in dynamic_lines(sm):
         print(line)
     files = [f for f in outdir.SOLVE if (out / f).exists()]
     print(f"  wrote {out}/: {', '.join(files)}")
     return print_warnings(res, args.strict)
+
+
+def summary_lines(sm: dict, dynamic: bool = False) -> list[str]:
+    """The console lines of a static summary (``summary.json``'s keys, SI): forces in mN,
+    N, kN or MN and moments in mN m to MN m as their size asks, with at least 3
+    significant digits (a lab model's 1.12 N is not ``0.00 kN``)."""
+    from verification.comparison.formatting import length, with_unit
+    lines = [f"  hang-off tension {with_unit(sm['hang_off_tension'], 'N')}, angle "
+             f"{sm['hang_off_angle_deg']:.3f} deg, at x = {length(sm['hang_off_x'])} m, "
+             f"y = {length(sm['hang_off_height'])} m"]
+    if sm.get("tdp_x") is not None:
+        lines.append(f"  touchdown x = {length(sm['tdp_x'])} m, tension "
+                     f"{with_unit(sm['tdp_tension'], 'N')}")
+    lines.append(f"  {'static: ' if dynamic else ''}max tension "
+                 f"{with_unit(sm['max_tension'], 'N')}, max moment "
+                 f"{with_unit(sm['max_moment'], 'N m', decimals=3)} at s = "
+                 f"{length(sm['max_moment_s'], decimals=1)} m")
+    return lines
 
 
 def add_parsers(sub) -> None:
@@ -66,8 +79,9 @@ def add_parsers(sub) -> None:
     s.add_argument("scene", help="built-in scene name or path to a .toml scene file")
     s.add_argument("--method", choices=METHODS, default="bvp")
     s.add_argument("--out", help="output directory (default out/SCENE/METHOD)")
-    s.add_argument("--tolerance", type=float, help="bvp: solve_bvp tolerance")
-    s.add_argument("--element-length", type=float, help="vfife: element length [m]")
+    add_ranged(s, "--tolerance", TOLERANCE, metavar="TOL", help="bvp: solve_bvp tolerance")
+    add_ranged(s, "--element-length", ELEMENT_LENGTH, metavar="H",
+               help="vfife: element length [m]")
     s.add_argument("--strict", action="store_true",
                    help="exit 1 when the result carries warnings (outside the model's validity)")
     s.set_defaults(func=cmd_solve)

@@ -11,11 +11,16 @@ from verification.catalog import resolve
 from verification.runtime import outdir
 from verification.studies import STUDIES
 
-from .common import err, out_folder, progress_for
+from .common import MAX_JOBS, Range, add_ranged, check_ranges, err, out_folder, progress_for
+
+#: --jobs of ``reproduce`` and --repeats of ``cost``
+JOBS = Range(1, MAX_JOBS, integer=True, what="worker processes")
+REPEATS = Range(1, 100, integer=True, what="timed runs per setting")
 
 
 def cmd_reproduce(args) -> int:
     from verification.studies.reproduce import reproduce
+    check_ranges(args)
     with progress_for(args, f"reproduce {args.name}") as prog:
         run = reproduce(args.name, out=Path(args.out) if args.out else None, jobs=args.jobs,
                         full=args.full, progress=prog)
@@ -59,6 +64,7 @@ def cmd_stress(args) -> int:
 def cmd_cost(args) -> int:
     from verification.studies import cost
     outdir.clear(args.out, outdir.COST)
+    check_ranges(args)
     scene = resolve(args.scene)
     out = out_folder(args, Path("reports") / "cost" / scene.name, outdir.COST)
     with progress_for(args, f"cost {scene.name}") as prog:
@@ -74,8 +80,8 @@ def cmd_cost(args) -> int:
 def add_parsers(sub) -> None:
     s = sub.add_parser("reproduce", help="regenerate a paper reproduction report")
     s.add_argument("name", choices=(*STUDIES, "all"))
-    s.add_argument("--jobs", type=int, default=min(2, os.cpu_count() or 1),
-                   help="worker processes (default: min(2, cores)); 1 runs serially")
+    add_ranged(s, "--jobs", JOBS, default=min(2, os.cpu_count() or 1), metavar="N",
+               help="worker processes (default: min(2, cores)); 1 runs serially")
     s.add_argument("--out", help="output directory (default reports/NAME)")
     s.add_argument("--full", action="store_true",
                    help="the cost study's full sweep (order sweep at tight tolerances, every "
@@ -92,8 +98,8 @@ def add_parsers(sub) -> None:
     s = sub.add_parser("cost", help="accuracy-versus-cost study of both methods on a scene")
     s.add_argument("scene", help="built-in scene name or path to a .toml scene file")
     s.add_argument("--out", help="output directory (default reports/cost/SCENE)")
-    s.add_argument("--repeats", type=int, default=3,
-                   help="timed runs per setting (median; default 3)")
+    add_ranged(s, "--repeats", REPEATS, default=3, metavar="N",
+               help="timed runs per setting (median; default 3)")
     s.add_argument("--quick", action="store_true",
                    help="coarse subset of settings (development)")
     s.add_argument("--full", action="store_true",

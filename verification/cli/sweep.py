@@ -9,18 +9,16 @@ from pathlib import Path
 from riser.errors import SceneError
 from verification.runtime import outdir
 
-from .common import err, progress_for
+from .common import MAX_JOBS, Range, add_ranged, check_ranges, err, progress_for
 
-#: the most local worker processes --jobs accepts
-MAX_JOBS = 1024
+#: --jobs of ``sweep``
+JOBS = Range(1, MAX_JOBS, integer=True, what="local worker processes")
 
 
 def _jobs(args) -> int:
     if args.jobs is None:
         return os.cpu_count() or 1
-    if not 1 <= args.jobs <= MAX_JOBS:
-        raise SceneError("command line", "--jobs", f"must be 1 to {MAX_JOBS} local worker "
-                         f"processes, got {args.jobs}")
+    check_ranges(args)
     if args.scheduler:
         raise SceneError("command line", "--jobs", "give --jobs (local workers) or "
                          "--scheduler (a Dask cluster's workers), not both")
@@ -31,7 +29,8 @@ def cmd_sweep(args) -> int:
     """``riser-verify sweep SWEEP.toml [--out DIR] [--jobs N] [--scheduler ADDRESS]``."""
     from verification.runtime.engine import Engine, EngineError
     from verification.sweeps.file import load_sweep
-    from verification.sweeps.run import OUTPUTS, clear_stale_cases, run
+    from verification.sweeps.run import (OUTPUTS, Interrupted, clear_stale_cases,
+                                         finished_count, run)
     jobs = _jobs(args)
     # the tables of an earlier run go first, so that a refusal leaves none behind (the
     # case folders stay: they are what a rerun resumes from)
@@ -39,22 +38,31 @@ def cmd_sweep(args) -> int:
     outdir.clear(out, OUTPUTS)
     sweep = load_sweep(args.sweep)                 # every case validated: exit 2 first
     engine = Engine(min(jobs, max(1, len(sweep.cases))), args.scheduler)
+    total, result = len(sweep.cases), None
     try:
         engine.open()                              # before anything is written
     except EngineError as exc:
         err(str(exc))
-        return 1
+        return exc.exit_code
     try:
-        out.mkdir(parents=True, exist_ok=True)
-        clear_stale_cases(out, len(sweep.cases))
-        print(f"sweep {sweep.name}: {len(sweep.cases)} case(s) of {sweep.base}, methods "
-              f"{', '.join(sweep.methods)}, on {engine.describe()}")
-        with progress_for(args, f"sweep {sweep.name}") as prog:
-            result = run(sweep, out, engine, prog)
-    finally:
-        engine.close()
-    from verification.sweeps.report import write
-    files = write(result, out)
+        try:
+            out.mkdir(parents=True, exist_ok=True)
+            clear_stale_cases(out, total)
+            print(f"sweep {sweep.name}: {total} case(s) of {sweep.base}, methods "
+                  f"{', '.join(sweep.methods)}, on {engine.describe()}", flush=True)
+            with progress_for(args, f"sweep {sweep.name}") as prog:
+                result = run(sweep, out, engine, prog)
+        finally:
+            engine.close()
+        from verification.sweeps.report import write
+        files = write(result, out)
+    except Interrupted as exc:
+        raise KeyboardInterrupt(f"interrupted: {exc.finished} of {total} cases written to "
+                                f"{out}; rerun the same command to resume") from None
+    except KeyboardInterrupt:                      # starting, or writing the tables
+        done = total if result is not None else finished_count(out, sweep)
+        raise KeyboardInterrupt(f"interrupted: {done} of {total} cases written to {out}; "
+                                "rerun the same command to resume") from None
     fails, bad, warned = result.failures(), result.disagreements(), result.warned()
     rate = result.cases_per_minute
     print(f"sweep {sweep.name}: ran {result.ran} case(s) in {result.wall_time_s:.1f} s"
@@ -73,10 +81,11 @@ def add_parsers(sub) -> None:
     s.add_argument("sweep", help="sweep file (.toml: base, methods, [[vary]] key/values)")
     s.add_argument("--out", help="output directory (default out/sweeps/SWEEP); a rerun "
                    "into it skips the finished cases")
-    s.add_argument("--jobs", type=int, default=None,
-                   help="local worker processes (default: this machine's cores)")
+    add_ranged(s, "--jobs", JOBS, default=None, metavar="N",
+               help="local worker processes (default: this machine's cores)")
     s.add_argument("--scheduler", help="run the cases on a Dask cluster instead: its "
-                   "scheduler's address, tcp://host:port (the optional extra [cluster])")
+                   "scheduler's address, tcp://host:port (the optional extra [cluster]); "
+                   "probed first: one line within seconds if it is not one")
     s.add_argument("--strict", action="store_true", help="exit 1 also when a result "
                    "carries warnings (outside its model's validity)")
     s.set_defaults(func=cmd_sweep)

@@ -1,6 +1,8 @@
 """How the values and differences of agreement rows print in a comparison's report: a
 difference below round-off of its basis prints as 0, a relative difference as a signed
-percentage of the row's basis."""
+percentage of the row's basis. And how a force, a moment or a length prints on the
+console (:func:`with_unit`, :func:`length`): with the prefix that keeps its significant
+digits, from a lab model's newtons to a riser's meganewtons."""
 
 from __future__ import annotations
 
@@ -9,6 +11,7 @@ import math
 import numpy as np
 
 from verification.report.markdown import fmt
+from verification.report.units import length, with_unit  # noqa: F401  (the console's)
 
 #: differences (and values) below this fraction of their basis are printed as 0: the
 #: solvers write their profiles with 10 significant digits, so nothing below ~1e-9 of a

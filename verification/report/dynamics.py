@@ -1,7 +1,8 @@
 """The plots and the console summary of a VFIFE dynamic run (``riser-verify solve`` of a
 scene with ``[dynamics]``): ``timeseries.png`` and ``envelope.png`` beside the CSV files.
 
-Units in the figures and lines: kN, kN m, m, s (the files hold SI: N, N m).
+Units in the figures: kN, kN m, m, s; the console lines choose mN to MN to keep three
+significant digits (the files hold SI: N, N m).
 """
 
 from __future__ import annotations
@@ -13,6 +14,7 @@ import numpy as np
 from riser.result import DynamicsResult
 
 from .figures import new_figure, save
+from .units import with_unit
 
 #: the figures written beside timeseries.csv and envelope.csv
 FILES = ("timeseries.png", "envelope.png")
@@ -83,12 +85,12 @@ def summary_lines(sm: dict) -> list[str]:
         return []
     lines = [f"  dynamics, statistics from t = {sm['statistics_start']:g} to "
              f"{sm['statistics_end']:g} s (effects: {', '.join(sm.get('effects', []))}):",
-             f"    hang-off tension {sm['dynamic_min_hang_off_tension'] / 1e3:.2f} to "
-             f"{sm['dynamic_max_hang_off_tension'] / 1e3:.2f} kN (range "
-             f"{sm['dynamic_hang_off_tension_range'] / 1e3:.2f} kN)",
-             f"    max moment {sm['dynamic_max_moment'] / 1e3:.3f} kN m at s = "
+             f"    hang-off tension {with_unit(sm['dynamic_min_hang_off_tension'], 'N')} to "
+             f"{with_unit(sm['dynamic_max_hang_off_tension'], 'N')} (range "
+             f"{with_unit(sm['dynamic_hang_off_tension_range'], 'N')})",
+             f"    max moment {with_unit(sm['dynamic_max_moment'], 'N m')} at s = "
              f"{sm['dynamic_max_moment_s']:.1f} m (t = {sm['dynamic_max_moment_time']:.2f} s)",
-             f"    min tension {sm['dynamic_min_tension'] / 1e3:.2f} kN at s = "
+             f"    min tension {with_unit(sm['dynamic_min_tension'], 'N')} at s = "
              f"{sm['dynamic_min_tension_s']:.1f} m (t = {sm['dynamic_min_tension_time']:.2f} s)"]
     if "dynamic_min_touchdown_s" in sm:
         lines.append(f"    touchdown s from {sm['dynamic_min_touchdown_s']:.1f} to "

@@ -13,9 +13,12 @@ Three backends behind one call, :meth:`Engine.map`:
 
 Units are independent: :meth:`Engine.map` yields ``(i, result)`` as each finishes, in
 whatever order; a unit that raised yields ``(i, exception)`` and the others go on.
-:meth:`Engine.open` connects to the scheduler before anything is written, so that an
-address that does not answer fails with :class:`EngineError` (one line, exit 1) and
-leaves no output behind.
+:meth:`Engine.open` probes the scheduler's address (a bounded comm handshake,
+:mod:`.scheduler_probe`) and connects before anything is written, so that an address that
+does not answer (exit 1), or answers but is not a Dask scheduler or is malformed (exit 2),
+fails with :class:`EngineError` in one line within seconds and leaves no output behind.
+An interrupt (Ctrl-C) at any moment of a local pool stops its workers and is raised as one
+``KeyboardInterrupt`` (:mod:`.interrupts`).
 """
 
 from __future__ import annotations
@@ -23,22 +26,52 @@ from __future__ import annotations
 import concurrent.futures as cf
 import multiprocessing as mp
 import os
-import signal
 import uuid
 from dataclasses import dataclass, field
+
+from .interrupts import held_interrupts, sigint_blocked, worker_ignores_sigint
+from .scheduler_probe import PROBE_TIMEOUT_S, ProbeFailed, probe
 
 #: environment of local worker processes, unless already set: one BLAS thread each (the
 #: OpenBLAS threads of ``solve_bvp`` compete with the other worker: ``reproduce all`` on 2
 #: cores took 317 s and 536 s of CPU with them, 308 s and 513 s without, with the same
 #: numbers). Dask workers are started by their owner: docs/sweeps.md says to set it there.
 WORKER_ENV = {"OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
-#: seconds to wait for a Dask scheduler to answer
+#: seconds to wait for a Dask scheduler to answer (the client, and its first worker)
 CONNECT_TIMEOUT_S = 10.0
+#: seconds a local worker is given to end after SIGTERM when a run is interrupted
+STOP_TIMEOUT_S = 5.0
 
 
 class EngineError(RuntimeError):
-    """The engine cannot run (a scheduler that does not answer, no worker, the optional
-    package missing): one line, exit 1."""
+    """The engine cannot run: one line, and its exit code: 1 for a scheduler that does not
+    answer, no worker, the optional package missing; 2 (bad input) for an address that is
+    malformed or is not a Dask scheduler's."""
+
+    def __init__(self, message: str, exit_code: int = 1):
+        super().__init__(message)
+        self.exit_code = exit_code
+
+
+def _address(address: str, distributed) -> tuple[str, str | None, int | None]:
+    """(scheme, host, port) of a scheduler address; :class:`EngineError` (exit 2) naming
+    ``--scheduler`` and the form when it is not one."""
+    form = "tcp://HOST:PORT, as `dask scheduler` prints it, PORT 1 to 65535"
+    if not address.startswith(("tcp://", "tls://", "inproc://", "ws://", "wss://")):
+        raise EngineError(f"--scheduler: {address!r} is not a scheduler address ({form})",
+                          exit_code=2)
+    scheme, loc = distributed.comm.parse_address(address)
+    if scheme == "inproc":
+        return scheme, None, None
+    try:
+        host, port = distributed.comm.parse_host_port(loc)
+    except ValueError as exc:
+        raise EngineError(f"--scheduler: {address!r} is not a scheduler address ({exc}; "
+                          f"{form})", exit_code=2) from None
+    if not isinstance(port, int) or not 1 <= port <= 65535 or not host:
+        raise EngineError(f"--scheduler: {address!r} is not a scheduler address ({form})",
+                          exit_code=2)
+    return scheme, host, port
 
 
 def require_dask():
@@ -54,9 +87,25 @@ def require_dask():
 def _worker_init(initializer, initargs) -> None:
     """A local worker ignores Ctrl-C (the submitting process handles it and stops the
     workers), then runs the progress display's initializer (output forwarding)."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    worker_ignores_sigint()
     if initializer is not None:
         initializer(*initargs)
+
+
+def _stop(pool) -> None:
+    """Drop the queued units of a local pool and end its workers (SIGTERM, then SIGKILL
+    after :data:`STOP_TIMEOUT_S`): no orphan outlives an interrupted run."""
+    if pool is None:
+        return
+    procs = list((getattr(pool, "_processes", None) or {}).values())
+    pool.shutdown(wait=False, cancel_futures=True)
+    for proc in procs:
+        proc.terminate()
+    for proc in procs:
+        proc.join(STOP_TIMEOUT_S)
+        if proc.is_alive():
+            proc.kill()
+            proc.join(1.0)
 
 
 @dataclass
@@ -81,23 +130,25 @@ class Engine:
 
     # ------------------------------------------------------------------ lifecycle
     def open(self) -> "Engine":
-        """Connect to the scheduler (nothing to do locally); raises :class:`EngineError`."""
+        """Connect to the scheduler (nothing to do locally); raises :class:`EngineError`:
+        exit 2 for an address that is malformed or names something that is not a Dask
+        scheduler, exit 1 for one that does not answer (or has no worker). Bounded: the
+        probe (:mod:`.scheduler_probe`) takes at most :data:`PROBE_TIMEOUT_S`, so nothing
+        here hangs or trusts a length from a server that is not a scheduler."""
         if not self.scheduler or self.client is not None:
             return self
         distributed = require_dask()
-        if not self.scheduler.startswith(("tcp://", "tls://", "inproc://", "ws://", "wss://")):
-            raise EngineError(f"--scheduler: {self.scheduler!r} is not a scheduler address "
-                              "(tcp://host:port, as `dask scheduler` prints it)")
-        try:
-            host, port = distributed.comm.parse_host_port(
-                distributed.comm.parse_address(self.scheduler)[1])
-        except ValueError as exc:
-            raise EngineError(f"--scheduler: {self.scheduler!r} is not a scheduler address "
-                              f"({exc}; tcp://host:port, as `dask scheduler` prints it)") from None
+        scheme, host, port = _address(self.scheduler, distributed)
+        timeout = min(PROBE_TIMEOUT_S, CONNECT_TIMEOUT_S)
+        if scheme in ("tcp", "tls", "ws", "wss"):
+            try:                                 # the full handshake on tcp://
+                probe(self.scheduler, host, port, timeout, handshake=scheme == "tcp")
+            except ProbeFailed as exc:
+                raise EngineError(str(exc), exit_code=2 if exc.bad_input else 1) from None
         try:
             self.client = distributed.Client(self.scheduler, timeout=CONNECT_TIMEOUT_S,
                                              set_as_default=False)
-        except (OSError, TimeoutError, ValueError) as exc:
+        except Exception as exc:                 # noqa: BLE001 - one line, whatever failed
             raise EngineError(f"--scheduler {self.scheduler}: the scheduler does not answer "
                               f"within {CONNECT_TIMEOUT_S:g} s ({type(exc).__name__}: "
                               f"{str(exc).splitlines()[0] if str(exc) else 'no reason given'})"
@@ -105,7 +156,7 @@ class Engine:
                               "`dask worker ADDRESS`") from None
         try:
             self.client.wait_for_workers(1, timeout=CONNECT_TIMEOUT_S)
-        except (TimeoutError, OSError):
+        except Exception:                        # noqa: BLE001 - TimeoutError, a lost comm
             self.close()
             raise EngineError(f"--scheduler {self.scheduler}: the scheduler answers but has "
                               f"no worker after {CONNECT_TIMEOUT_S:g} s; start some with "
@@ -146,28 +197,35 @@ class Engine:
             yield from self._pool(fn, args, progress)
 
     def _pool(self, fn, args, progress):
+        """The local pool. Its start (the workers spawned by the first submissions) and its
+        clean-up run with Ctrl-C held back (:mod:`.interrupts`); the workers are born with
+        SIGINT blocked, so an interrupt of the terminal's process group reaches only this
+        process, which stops them."""
         for key, value in WORKER_ENV.items():       # before the workers start (spawn)
             os.environ.setdefault(key, value)
         ctx = mp.get_context("spawn")
-        opts = progress.worker_options(ctx) if progress is not None else {}
-        pool = cf.ProcessPoolExecutor(max_workers=self.jobs, mp_context=ctx,
-                                      initializer=_worker_init,
-                                      initargs=(opts.get("initializer"), opts.get("initargs", ())))
+        pool, futures = None, {}
         try:
-            futures = {pool.submit(fn, *a): i for i, a in enumerate(args)}
+            with held_interrupts(), sigint_blocked():
+                opts = progress.worker_options(ctx) if progress is not None else {}
+                pool = cf.ProcessPoolExecutor(
+                    max_workers=self.jobs, mp_context=ctx, initializer=_worker_init,
+                    initargs=(opts.get("initializer"), opts.get("initargs", ())))
+                for i, a in enumerate(args[:self.jobs]):    # these spawn the workers
+                    futures[pool.submit(fn, *a)] = i
+            for i, a in enumerate(args[self.jobs:], start=self.jobs):
+                futures[pool.submit(fn, *a)] = i
             for f in cf.as_completed(futures):
                 try:
                     out = f.result()
                 except Exception as exc:           # incl. a worker that died
                     out = exc
                 yield futures[f], out
-        except BaseException:                      # interrupted: drop the queued units
-            procs = list((getattr(pool, "_processes", None) or {}).values())
-            pool.shutdown(wait=False, cancel_futures=True)
-            for proc in procs:
-                proc.terminate()                   # and the running ones: no orphans
+            pool.shutdown(wait=True)
+        except BaseException:                      # interrupted (or closed): stop it all
+            with held_interrupts():
+                _stop(pool)
             raise
-        pool.shutdown(wait=True)
 
     def _dask(self, fn, args, names):
         distributed = require_dask()

@@ -5,7 +5,9 @@ below, and nothing else: a foreign file in the folder is kept, the folder itself
 removed), before it reads its input. So a run that is refused (exit 2), fails (exit 1) or
 is interrupted leaves no profile, table or report of an earlier run that could be taken
 for its own; a failed solve still writes a ``summary.json`` stating the failure
-(:meth:`riser.result.SolveResult.write`).
+(:meth:`riser.result.SolveResult.write`). The same step checks that the folder can be
+written (:func:`check_writable`), so a read-only folder is bad input said before any
+solving, not a lost result at the end.
 
 The lists are checked against what the commands write (``tests/test_input_hygiene.py``
 compares them with the committed ``reports/`` folders and a real solve): a new output file
@@ -14,9 +16,13 @@ must be added here.
 
 from __future__ import annotations
 
+import contextlib
+import errno
+import os
 from pathlib import Path
 
 from riser.errors import SceneError
+from riser.io.scene_file import path_problem
 
 #: ``solve``: one result (SolveResult.write; the rest: a VFIFE dynamic run, its plots, and
 #: states.npz with ``[dynamics] save_states``)
@@ -59,28 +65,75 @@ STUDY_FILES = {
 }
 
 
+def check_writable(folder: str | Path) -> None:
+    """Raise :class:`SceneError` (exit 2, naming ``--out``) unless files can be written in
+    ``folder``: the folder is created if missing (and the folders above it), a probe file
+    is written, flushed and deleted, and the folders created for the test are removed
+    again. So a read-only or full folder is said before any solving, not found when the
+    results are written (the results of a long run were lost to an ``unexpected OSError``).
+    """
+    base = Path(folder)
+    created: list[Path] = []
+    try:
+        for d in reversed([base, *base.parents]):
+            if not d.exists():
+                try:
+                    d.mkdir()
+                except OSError as exc:
+                    raise SceneError(str(base), "--out", f"cannot be created: {d}: "
+                                     f"{exc.strerror or exc}; choose a folder you can write "
+                                     "to") from None
+                created.append(d)
+        probe = base / f".riser-verify-write-test-{os.getpid()}"
+        try:
+            fd = os.open(probe, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
+            try:
+                os.write(fd, b"riser-verify: can this folder be written?\n")
+                os.fsync(fd)
+            finally:
+                os.close(fd)
+            os.unlink(probe)
+        except OSError as exc:
+            with contextlib.suppress(OSError):
+                probe.unlink()
+            raise SceneError(str(base), "--out", f"cannot be written: "
+                             f"{exc.strerror or exc}; choose a folder you can write to") from None
+    finally:
+        for d in reversed(created):
+            with contextlib.suppress(OSError):
+                d.rmdir()
+
+
 def clear(folder: str | Path | None, names: tuple[str, ...]) -> list[Path]:
     """Remove the files ``names`` (paths relative to ``folder``) left by an earlier run, and
     the subfolders among them that this leaves empty; returns the removed files.
 
-    ``folder`` None (the command's default folder, not known yet) or missing: nothing to
-    do. Raises :class:`SceneError` (exit 2, before any solving) when ``folder`` is not a
-    folder (or cannot be one: a file where a folder above it should be) or a stale file
-    cannot be removed, so no old result survives unnoticed.
+    ``folder`` None (the command's default folder, not known yet): nothing to do. Raises
+    :class:`SceneError` (exit 2, before any solving) when ``folder`` is not a folder (or
+    cannot be one: a file where a folder above it should be), cannot be written
+    (:func:`check_writable`: read-only, or cannot be created) or a stale file cannot be
+    removed, so no old result survives unnoticed and no result is lost at the end.
     """
     if folder is None:
         return []
     base = Path(folder)
+    problem = path_problem(base)
+    # a name too long or a loop of links: Path.exists would raise OSError (a file above
+    # the folder is said below, with the file named)
+    if problem is not None and problem != os.strerror(errno.ENOTDIR):
+        raise SceneError(str(base), "--out", f"cannot be used: {problem}")
     if not base.exists():
         # it is created later: the nearest existing folder above it must be a folder
         above = next((a for a in base.parents if a.exists()), None)
         if above is not None and not above.is_dir():
             raise SceneError(str(base), "--out", f"cannot be created: {above} is a file, not "
                              "a folder")
+        check_writable(base)
         return []
     if not base.is_dir():
         raise SceneError(str(base), "--out", "is a file, not a folder: give a folder for the "
                          "results (it is created if missing)")
+    check_writable(base)
     removed = []
     subfolders = set()
     for name in names:

@@ -304,9 +304,13 @@ class UnitTracker:
     """``k/N units`` of a run of independent units on ``jobs`` processes, and the fraction
     done weighted by each unit's expected ``seconds``: a finished unit counts its seconds,
     a running one the time it has run (up to 90 % of its seconds). Units start in the
-    given order as processes free up. Set as a :class:`Progress`'s ``source``."""
+    given order as processes free up. Set as a :class:`Progress`'s ``source``. With
+    ``known`` False the seconds are placeholders: no fraction (a spinner, no ETA) until
+    :meth:`rescale` gives the measured time of a unit."""
 
-    def __init__(self, seconds: list[float], jobs: int, what: str = "units", clock=None):
+    def __init__(self, seconds: list[float], jobs: int, what: str = "units", clock=None,
+                 known: bool = True):
+        self.known = known               # False: no fraction (no bar, no ETA) until rescale
         self.seconds = [max(float(s), 1e-9) for s in seconds]
         self.total = sum(self.seconds)
         self.jobs, self.what = max(1, jobs), what
@@ -314,6 +318,14 @@ class UnitTracker:
         now = self.clock()
         self.start = [now if i < self.jobs else None for i in range(len(seconds))]
         self.finished: set[int] = set()
+
+    def rescale(self, seconds: float) -> None:
+        """Every unit is now expected to take ``seconds`` (a measured time replacing the
+        declared ones: the sweep's first case), so that the fraction done, and the ETA
+        drawn from it, follow the real pace."""
+        self.seconds = [max(float(seconds), 1e-9)] * len(self.seconds)
+        self.total = sum(self.seconds)
+        self.known = True
 
     def done(self, i: int) -> None:
         """Unit ``i`` finished: the next unit not yet started starts now."""
@@ -328,4 +340,4 @@ class UnitTracker:
         work += sum(min(now - t, 0.9 * s) for i, (t, s) in enumerate(zip(self.start, self.seconds))
                     if t is not None and i not in self.finished)
         return (f"{len(self.finished)}/{len(self.seconds)} {self.what} done",
-                min(work / self.total, 1.0) if self.total > 0 else None)
+                min(work / self.total, 1.0) if self.total > 0 and self.known else None)

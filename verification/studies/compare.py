@@ -14,7 +14,6 @@ from riser.errors import SolveFailed
 from verification.catalog import resolve
 from verification.comparison.protocol import compare
 from verification.comparison.report import write
-from verification.report.markdown import pct
 
 from .study import Study
 
@@ -47,11 +46,18 @@ def index_row(d: Path):
     failed = df[~df["pass"].astype(bool)].quantity.tolist()
     rows = df.set_index("quantity")
     bases = {"configuration": "of depth", "tension": "of T_max", "moment": "of M_max"}
-    text = ", ".join(f"{q} {pct(rows.loc[q, 'rel_diff'], 2)} {bases[q]}" for q in bases
+    # two significant digits: a difference of 8e-6 of the depth is "+0.00081 %", not the
+    # "+0.00 %" a fixed two decimals printed (read as no difference at all)
+    text = ", ".join(f"{q} {100.0 * rows.loc[q, 'rel_diff']:+.2g} % {bases[q]}" for q in bases
                      if q in rows.index)
     if "tdp_x" in rows.index:
         tdp = rows.loc["tdp_x"]
         text += f", touchdown {tdp['vfife'] - tdp['bvp']:+.3f} m"
+    judged = df[df["pass"].notna() & (df.tolerance > 0)]
+    if len(judged):
+        ratio = judged.abs_diff / judged.tolerance
+        k = ratio.idxmax()
+        text += f"; nearest its tolerance: {judged.quantity[k]} at {ratio[k]:.2f} of it"
     if failed:
         text += f"; outside tolerance: {', '.join(failed)}"
     return "1 scene", text, "pass" if not failed else "fail"

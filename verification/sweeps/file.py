@@ -36,7 +36,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from riser.errors import SceneError
-from riser.io.scene_file import load_scene, scene_from_dict
+from riser.io.scene_file import is_file, load_scene, path_problem, read_text, scene_from_dict
 from riser.result import METHODS
 from riser.scene import Scene
 from verification.catalog import builtin_paths, resolve
@@ -163,15 +163,15 @@ def _read_base(base, folder: Path, source: str) -> tuple[Scene, dict]:
         raise SceneError(source, "base", "must be a built-in scene name or a scene file path "
                          f"(a string), got {json.dumps(base)[:60]}")
     path = folder / base
-    if not path.is_file():
+    if not is_file(path):
         path = builtin_paths().get(base, Path(base))
-    if not path.is_file():
+    if not is_file(path):
         try:
             resolve(base)                         # its one-line reason and near-miss hint
         except SceneError as exc:
             raise SceneError(source, "base", str(exc)) from None
     scene = load_scene(path)                      # its own errors first, naming its file
-    return scene, tomllib.loads(path.read_text(encoding="utf-8-sig"))
+    return scene, tomllib.loads(read_text(path))
 
 
 def _read_vary(data, source: str) -> tuple[Vary, ...]:
@@ -264,7 +264,8 @@ def builtin_sweeps() -> dict[str, Path]:
 def resolve_sweep(name_or_path: str | Path) -> Path:
     """A sweep file by path, else a built-in sweep by name; :class:`SceneError` if neither."""
     path = Path(name_or_path)
-    if path.exists() or path.suffix == ".toml" or len(path.parts) > 1:
+    if (path_problem(path) is not None or path.exists() or path.suffix == ".toml"
+            or len(path.parts) > 1):
         return path
     found = builtin_sweeps().get(str(name_or_path))
     if found is None:
@@ -279,9 +280,9 @@ def load_sweep(name_or_path: str | Path) -> Sweep:
     path = resolve_sweep(name_or_path)
     source = str(name_or_path)
     try:
-        text = path.read_text(encoding="utf-8-sig")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise SceneError(source, "", f"cannot read the sweep file ({getattr(exc, 'strerror', None) or exc})") from None
+        text = read_text(path, "a sweep")     # never a FIFO or device: it could block
+    except SceneError as exc:
+        raise SceneError(source, "", exc.message) from None
     try:
         data = tomllib.loads(text)
     except ValueError as exc:

@@ -5,26 +5,64 @@ The output folder holds one folder per case (``cases/NNNN/``, written as each ca
 back: :mod:`verification.sweeps.case`) and the sweep's own files (:data:`OUTPUTS`), which
 are removed before the cases run and written only once every case has a record: an
 interrupted or failed run leaves the finished cases (the next run skips them) and no
-table or report that could be taken for a complete one.
+table or report that could be taken for a complete one. An interrupt (Ctrl-C) stops the
+engine and raises :class:`Interrupted`, which says how many cases are written.
 """
 
 from __future__ import annotations
 
+import contextlib
 import json
+import math
 import shutil
+import statistics
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from verification.runtime.engine import Engine
+from verification.runtime.interrupts import held_interrupts
 from verification.runtime.progress import UnitTracker
 
-from .case import ERROR, error_record, read_case, run_case, write_case
+from .case import ERROR, case_folder, error_record, read_case, run_case, write_case
 from .file import Sweep
 
 #: the sweep's own files (``cases/`` aside), cleared before a run
 OUTPUTS = ("cases.csv", "envelopes.csv", "report.md", "range_tension.png",
            "range_moment.png", "configurations.png")
+
+
+class Interrupted(KeyboardInterrupt):
+    """Ctrl-C while the cases ran: ``finished`` of ``total`` cases are in their folders (the
+    next run skips them); the engine's workers are stopped."""
+
+    def __init__(self, finished: int, total: int):
+        super().__init__(f"{finished} of {total} cases")
+        self.finished, self.total = finished, total
+
+
+def duration_text(seconds: float) -> str:
+    """'40 s', '12 min', '2 h 05 min'."""
+    if seconds < 90:
+        return f"{max(seconds, 1):.0f} s"
+    if seconds < 90 * 60:
+        return f"{seconds / 60:.0f} min"
+    h, m = divmod(int(seconds / 60 + 0.5), 60)
+    return f"{h} h {m:02d} min"
+
+
+def estimate_line(todo: int, workers: int, case_s: float, source: str) -> str:
+    """The wall time of ``todo`` cases of ``case_s`` seconds each on ``workers`` at once:
+    the cases run in rounds of ``workers``."""
+    w = max(1, min(workers, todo))
+    return (f"estimate: about {duration_text(math.ceil(todo / w) * case_s)} for {todo} "
+            f"case(s) on {w} worker(s) ({case_s:.1f} s a case with every method, {source})")
+
+
+def _case_seconds(records) -> list[float]:
+    return [r["wall_time_s"] for r in records
+            if "error" not in r and isinstance(r.get("wall_time_s"), (int, float))
+            and r["wall_time_s"] > 0]
 
 
 @dataclass
@@ -74,7 +112,15 @@ def case_line(rec: dict, n: int) -> str:
 
 def run(sweep: Sweep, out: Path, engine: Engine, progress=None) -> SweepRun:
     """Run the cases of ``sweep`` not finished in ``out``, each into its own folder;
-    return every case's record. The engine must be open."""
+    return every case's record. The engine must be open.
+
+    ``progress`` (a :class:`~verification.runtime.progress.Progress`) gets, before the
+    first case, the estimate of the wall time (from the cases finished by an earlier run,
+    else said to follow the first case, and then given from it: the cases run in rounds of
+    the engine's workers), a line per case, and a :class:`UnitTracker` scaled to the
+    measured time a case, whose fraction draws the bar and the ETA on a terminal. Ctrl-C
+    stops the engine's workers and raises :class:`Interrupted` with the count of cases
+    written."""
     out = Path(out)
     records: dict[int, dict] = {}
     todo = []
@@ -85,29 +131,50 @@ def run(sweep: Sweep, out: Path, engine: Engine, progress=None) -> SweepRun:
         else:
             records[case.index] = rec
     resumed = len(records)
-    if resumed and progress is not None:
-        progress.log(f"{resumed} of {len(sweep.cases)} case(s) finished by an earlier run: "
-                     "skipped")
     specs = [{"index": c.index, "digest": c.digest, "scene": c.scene_dict,
               "methods": list(sweep.methods)} for c in todo]
     workers = engine.workers()
-    track = UnitTracker([1.0] * len(specs), workers, what="cases")
+    earlier = _case_seconds(records.values())
+    track = UnitTracker([1.0] * len(specs), workers, what="cases", known=False)
     if progress is not None:
+        if resumed:
+            progress.log(f"{resumed} of {len(sweep.cases)} case(s) finished by an earlier run: "
+                         "skipped")
+        if specs and earlier:
+            case_s = statistics.median(earlier)
+            progress.log(estimate_line(len(specs), workers, case_s, f"the median of the "
+                                       f"{len(earlier)} finished earlier"))
+            track.rescale(case_s)
+        elif specs:
+            progress.log(f"{len(specs)} case(s) to run on {min(workers, len(specs))} "
+                         "worker(s); the estimate of the time follows the first case")
         progress.source = track
     t0 = time.perf_counter()
     hosts: set[str] = set()
     names = [f"{sweep.name}-case-{s['index']:04d}" for s in specs]
-    for i, res in engine.map(run_case, [(s,) for s in specs], progress, names):
-        spec = specs[i]
-        if isinstance(res, BaseException):
-            res = error_record(spec, f"the worker failed: {type(res).__name__}: {res}")
-        write_case(out, res, _scene_text(sweep, sweep.cases[spec["index"]]))
-        records[spec["index"]] = read_case(out, spec["index"], spec["digest"]) or \
-            _without_profiles(res)
-        hosts.add(str(res.get("worker", "")).split(":")[0])
-        track.done(i)
-        if progress is not None:
-            progress.log(case_line(records[spec["index"]], len(sweep.cases)))
+    done: list[float] = []
+    try:
+        with contextlib.closing(engine.map(run_case, [(s,) for s in specs], progress,
+                                           names)) as results:
+            for i, res in results:
+                spec = specs[i]
+                if isinstance(res, BaseException):
+                    res = error_record(spec, f"the worker failed: {type(res).__name__}: {res}")
+                with held_interrupts():        # a case is written and counted, or not
+                    write_case(out, res, _scene_text(sweep, sweep.cases[spec["index"]]))
+                    records[spec["index"]] = read_case(out, spec["index"], spec["digest"]) \
+                        or _without_profiles(res)
+                hosts.add(str(res.get("worker", "")).split(":")[0])
+                track.done(i)
+                if progress is not None:
+                    progress.log(case_line(records[spec["index"]], len(sweep.cases)))
+                done += _case_seconds([res])
+                if len(done) == 1 and not earlier and len(specs) > 1 and progress is not None:
+                    progress.log(estimate_line(len(specs), workers, done[0], "the first case"))
+                    track.rescale(done[0])
+    except KeyboardInterrupt:
+        raise Interrupted(sum(1 for r in records.values() if "error" not in r),
+                          len(sweep.cases)) from None
     wall = time.perf_counter() - t0
     ordered = [records[c.index] for c in sweep.cases]
     return SweepRun(sweep, ordered, resumed, len(specs), wall, engine.describe(), workers,
@@ -128,6 +195,19 @@ def _without_profiles(rec: dict) -> dict:
         d.pop("profile", None)
         d.setdefault("status", ERROR)
     return rec
+
+
+def finished_count(out: Path, sweep: Sweep) -> int:
+    """How many cases of ``sweep`` have their record in ``out`` with their inputs (what a
+    rerun skips), read from each ``case.json`` alone."""
+    n = 0
+    for case in sweep.cases:
+        try:
+            rec = json.loads((case_folder(out, case.index) / "case.json").read_text())
+        except (OSError, ValueError):
+            continue
+        n += rec.get("digest") == case.digest and "error" not in rec
+    return n
 
 
 def clear_stale_cases(out: Path, count: int) -> None:

@@ -1,15 +1,24 @@
 """The MoorDyn v2 input file ("deck"): reading it into tables and writing one.
 
 Only the text format lives here (its writing is :func:`riser.io.moordyn.deck_from_scene.format_deck`),
-not its meaning for a riser (:mod:`riser.io.moordyn.scene_from_deck`, :mod:`riser.io.moordyn.deck_from_scene`). The format is MoorDyn-C v2's
-(moordyn.readthedocs.io, "The V2 Input File"): free front matter, then sections opened by a
-header of dashes around a key phrase, in this order: LINE TYPES, ROD TYPES, BODIES, RODS,
-POINTS, LINES, (FAILURE, CONTROL, EXTERNAL LOADS), OPTIONS, OUTPUTS; a table section has
-two header lines (names, units) before its rows; ``!``, ``#`` and ``%`` start a comment;
-OPTIONS rows are ``value key [description]``; a dashed line ends the OUTPUTS.
+not its meaning for a riser (:mod:`riser.io.moordyn.options`, :mod:`riser.io.moordyn.scene_from_deck`,
+:mod:`riser.io.moordyn.deck_from_scene`). The format is the one MoorDyn-C 2.7 reads
+(source/MoorDyn2.cpp, ``ReadInFile`` and ``findStartOfSection``; moordyn.readthedocs.io,
+"The V2 Input File"):
+
+- free front matter, then sections. A **section header** is any line holding ``---``
+  and one of MoorDyn's key phrases (``SECTIONS``, any case: "SOLVER OPTIONS" is the
+  OPTIONS section, "CONNECTION PROPERTIES" the POINTS, as MoorDyn-C reads them);
+- a section ends at the next line holding ``---``: another header or a terminator such as
+  ``---- need this line ----``. A row after a terminator is read by no section of
+  MoorDyn-C, so it is refused here (a misspelt header, or dashes inside an option's
+  description, which end MoorDyn's OPTIONS there);
+- a table section has two header lines (names, units) before its rows; ``!``, ``#`` and
+  ``%`` start a comment; OPTIONS rows are ``value key [description]``.
 
 Every problem raises :class:`DeckError`, one line naming the deck file and the line number,
-e.g. ``riser.dat: line 12: line type 'pipe': EI: 'x' is not a number``.
+e.g. ``riser.dat: line 12: line type 'pipe': EI: 'x' is not a number``. A problem of a line
+type is kept and raised only if a line uses that type (MoorDyn reads the others too).
 
 MoorDyn's coordinates: X, Y horizontal, Z up with the still water surface at Z = 0 and the
 seabed at Z = -WtrDpth; SI units (m, kg, N, s).
@@ -17,52 +26,22 @@ seabed at Z = -WtrDpth; SI units (m, kg, N, s).
 
 from __future__ import annotations
 
-import math
 import re
+import stat
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ...errors import SceneError
+from .tokens import (  # noqa: F401 - the format's names, importable from here too
+    C_OPTIONS, CANONICAL, OPTION_KEYS, ORDER, SECTIONS, TEXT_OPTIONS, DeckError,
+    comma_message, is_comma_number, is_number, number)
 
-
-class DeckError(SceneError):
-    """Invalid or unsupported MoorDyn deck content: names the file and the line number
-    (``line`` 0 when the problem is the file as a whole)."""
-
-    def __init__(self, source: str, line: int, message: str):
-        super().__init__(source, f"line {line}" if line else "", message)
-        self.line = line
-
-
-#: section key phrases (upper case, as MoorDyn matches them) -> section name
-SECTIONS = {
-    "LINE TYPES": "line_types", "LINE DICTIONARY": "line_types",
-    "ROD TYPES": "rod_types", "ROD DICTIONARY": "rod_types",
-    "BODIES": "bodies", "BODY LIST": "bodies", "BODY PROPERTIES": "bodies",
-    "RODS": "rods", "ROD LIST": "rods", "ROD PROPERTIES": "rods",
-    "POINTS": "points", "POINT LIST": "points", "POINT PROPERTIES": "points",
-    "LINES": "lines", "LINE LIST": "lines",
-    "FAILURE": "failure", "CONTROL": "control", "EXTERNAL LOADS": "external_loads",
-    "OPTIONS": "options", "OUTPUTS": "outputs",
-}
-#: headers of the v1 format, refused with a pointer to v2
-V1_SECTIONS = ("NODE PROPERTIES", "CONNECTION PROPERTIES", "LINE PROPERTIES", "SOLVER OPTIONS")
-
-#: the OPTIONS keys MoorDyn-C 2.x reads (and MoorDyn-F's, which C ignores), lower case ->
-#: the spelling written; values that are not numbers are listed in TEXT_OPTIONS
-OPTION_KEYS = {k.lower(): k for k in (
-    "writeLog", "dtM", "CFL", "tScheme", "g", "gravity", "rho", "rhoW", "WtrDpth", "kBot",
-    "kb", "cBot", "cb", "dtIC", "TmaxIC", "CdScaleIC", "threshIC", "WaveKin", "dtWave",
-    "waveKin_rampT", "Currents", "UnifyCurrentGrid", "WriteUnits", "FrictionCoefficient",
-    "FricDamp", "StatDynFricScale", "dtOut", "SeafloorFile", "ICgenDynamic",
-    "disableOutput", "disableOutTime", "Echo", "WaterKin", "MU_KT", "MU_KA", "MC", "CV",
-    "inertialF", "inertialF_rampT", "OutSwitch", "ICDfac", "ICthresh", "ICTmax")}
-TEXT_OPTIONS = ("tscheme", "seafloorfile", "waterkin", "echo")
-
-#: the columns of a v2 line type after its name (10 to 13 columns with the name)
+#: the columns of a v2 line type after its name (10 to 13 columns with the name; MoorDyn
+#: reads them by position, whatever the header says)
 LINE_TYPE_COLUMNS = ("Diam", "Mass/m", "EA", "BA/-zeta", "EI", "Cd", "Ca", "CdAx", "CaAx")
 LINE_TYPE_VIV = ("Cl", "dF", "cF")
 POINT_COLUMNS = ("X", "Y", "Z", "Mass", "Volume", "CdA", "Ca")
+#: the columns of a 12-column point row (MoorDyn-C reads FX FY FZ when 12 are given)
+POINT_COLUMNS_12 = ("X", "Y", "Z", "Mass", "Volume", "FX", "FY", "FZ", "CdA", "Ca")
 
 
 @dataclass(frozen=True)
@@ -88,7 +67,8 @@ class DeckLineType:
 @dataclass(frozen=True)
 class DeckPoint:
     """A POINTS row: id; attachment as written (Fixed, Coupled, Free, Body2, ...); x, y,
-    z [m] (None when not given as numbers); mass [kg], volume [m3], CdA [m2], Ca [-]."""
+    z [m] (None when not given as numbers); mass [kg], volume [m3], CdA [m2], Ca [-]; the
+    steady force FX FY FZ [N] of a 12-column row."""
 
     id: int
     attachment: str
@@ -100,14 +80,16 @@ class DeckPoint:
     CdA: float = 0.0
     Ca: float = 0.0
     line: int = 0
+    force: tuple[float, float, float] = (0.0, 0.0, 0.0)
 
     @property
     def kind(self) -> str:
-        """'fixed', 'coupled', 'free' or 'other' (body- or rod-relative)."""
-        a = self.attachment.lower()
+        """'fixed', 'coupled', 'free' or 'other' (body- or rod-relative), as MoorDyn-C
+        reads the attachment (its letters, any case)."""
+        a = re.sub(r"\d+$", "", self.attachment.lower())
         if a in ("fixed", "fix", "anchor"):
             return "fixed"
-        if a in ("coupled", "vessel", "vec", "ves", "cpld", "fairlead"):
+        if a in ("coupled", "vessel", "ves", "cpld", "fairlead"):
             return "coupled"
         if a in ("free", "connect", "con", "point"):
             return "free"
@@ -131,58 +113,88 @@ class DeckLine:
 
 @dataclass
 class Deck:
-    """A parsed deck. ``options`` maps the lower-case key to (value as written, line);
-    ``other`` maps the name of a section this suite cannot hold (bodies, rods, ...) to the
-    line number of its first row; ``outputs`` the OUTPUTS channels."""
+    """A parsed deck. ``options`` maps the lower-case option name as written to (value as
+    written, line), the last row of that name; ``option_rows`` every OPTIONS row in order
+    (name as written, '' for a row without a name; value; line); ``line_type_errors`` the
+    problem of each line type that cannot be read (raised if a line uses it); ``other``
+    maps the name of a section this suite cannot hold (bodies, rods, ...) to the line
+    number of its first row; ``outputs`` the OUTPUTS channels; ``notes`` what the reading
+    noticed (sections out of order)."""
 
     source: str
     front: list[str] = field(default_factory=list)
     line_types: dict[str, DeckLineType] = field(default_factory=dict)
+    line_type_errors: dict[str, DeckError] = field(default_factory=dict)
     points: list[DeckPoint] = field(default_factory=list)
     lines: list[DeckLine] = field(default_factory=list)
     options: dict[str, tuple[str, int]] = field(default_factory=dict)
+    option_rows: list[tuple[str, str, int]] = field(default_factory=list)
     outputs: list[str] = field(default_factory=list)
     other: dict[str, int] = field(default_factory=dict)
+    notes: list[str] = field(default_factory=list)
+
+    def option_entry(self, key: str) -> tuple[str, int, str] | None:
+        """(value, line, name as written) of the option ``key`` as MoorDyn-C reads it: the
+        last row among the option's name and its aliases; None when none is given."""
+        canon = CANONICAL.get(key.lower(), key)
+        names = {a.lower() for a in (canon, *C_OPTIONS.get(canon, ()))} or {key.lower()}
+        got = [(v, no, k) for k, (v, no) in self.options.items() if k in names]
+        if not got:
+            return None
+        value, no, k = max(got, key=lambda e: e[1])
+        return value, no, next((n for n, _, line in self.option_rows if line == no and no), k)
 
     def option(self, key: str, default: float | None = None) -> float | None:
-        """The numeric value of option ``key`` (any spelling), or ``default``."""
-        got = self.options.get(key.lower())
+        """The numeric value of option ``key`` (any alias), or ``default``."""
+        got = self.option_entry(key)
         return default if got is None else float(got[0])
 
     def option_line(self, key: str) -> int:
-        got = self.options.get(key.lower())
+        got = self.option_entry(key)
         return 0 if got is None else got[1]
 
 
 # ---------------------------------------------------------------------------- reading
 def read_deck(path: str | Path) -> Deck:
     """Read a MoorDyn v2 deck from a file (UTF-8 or Latin-1 text of at most 5 MB)."""
-    path = Path(path)
-    where = str(path)
-    try:
-        if path.is_dir():
-            raise DeckError(where, 0, "is a directory, not a MoorDyn input file")
-        data = path.read_bytes()[:5_000_001]
-    except OSError as exc:
-        raise DeckError(where, 0, f"cannot read file ({exc.strerror or exc})") from None
-    if len(data) > 5_000_000:
-        raise DeckError(where, 0, "is larger than 5 MB, too large for a MoorDyn input file")
-    if b"\x00" in data:
-        raise DeckError(where, 0, "is binary data (it holds NUL bytes), not a MoorDyn input "
-                        "file (plain text)")
-    try:
-        text = data.decode("utf-8-sig")
-    except UnicodeDecodeError:
-        text = data.decode("latin-1")
+    text, where = read_text(path, "a MoorDyn input file")
     return parse_deck(text, where)
 
 
-def _header(line: str) -> str | None:
-    """The key phrase of a section header line (dashes around words), else None."""
-    s = line.strip()
-    if not s.startswith("---"):
-        return None
-    return re.sub(r"\s+", " ", s.strip("- \t")).upper()
+def read_text(path: str | Path, what: str, limit: int = 5_000_000) -> tuple[str, str]:
+    """(the text of a regular file of at most ``limit`` bytes, the file's name as messages
+    print it: control characters written \\xNN); a one-line DeckError otherwise (a
+    folder, a pipe or device, which is never opened, binary data)."""
+    path = Path(path)
+    where = "".join(c if c.isprintable() else f"\\x{ord(c):02x}" for c in str(path))
+    try:
+        st = path.stat()
+        if stat.S_ISDIR(st.st_mode):
+            raise DeckError(where, 0, f"is a directory, not {what}")
+        if not stat.S_ISREG(st.st_mode):
+            raise DeckError(where, 0, f"is not a regular file (a pipe or a device), not {what}")
+        with path.open("rb") as f:
+            data = f.read(limit + 1)
+    except OSError as exc:
+        raise DeckError(where, 0, f"cannot read file ({exc.strerror or exc})") from None
+    if len(data) > limit:
+        raise DeckError(where, 0, f"is larger than {limit / 1e6:g} MB, too large for {what}")
+    if b"\x00" in data:
+        raise DeckError(where, 0, f"is binary data (it holds NUL bytes), not {what} (plain "
+                        "text)")
+    try:
+        return data.decode("utf-8-sig"), where
+    except UnicodeDecodeError:
+        return data.decode("latin-1"), where
+
+
+def _section_of(line: str) -> str | None:
+    """The section a line holding ``---`` opens (its key phrase, any case), else None."""
+    up = re.sub(r"\s+", " ", line.upper())
+    for key, name in SECTIONS.items():
+        if re.search(rf"(?<![A-Z]){key}(?![A-Z])", up):
+            return name
+    return None
 
 
 def _strip_comment(line: str) -> str:
@@ -194,35 +206,41 @@ def parse_deck(text: str, source: str = "<deck>") -> Deck:
     deck = Deck(source=source)
     section: str | None = None
     skip = 0          # table header lines still to skip
-    ended = False
     seen: list[str] = []
+    closed: tuple[int, str, str] | None = None     # (line, text, section) of a terminator
+    names: list[str] = []                           # the column names of the table
     for no, raw in enumerate(text.splitlines(), start=1):
-        head = _header(raw)
-        if head is not None:
-            if section == "outputs":
-                ended = True
-                break
-            if any(v1 in head for v1 in V1_SECTIONS):
-                raise DeckError(source, no, f"section '{head.title()}' is MoorDyn v1 format; "
-                                "this reads v2 decks (POINTS and LINES with AttachA/AttachB, "
-                                "OPTIONS): convert the deck to v2")
-            name = next((v for k, v in SECTIONS.items() if head == k or head.startswith(k + " ")
-                         or head.endswith(" " + k) or f" {k} " in f" {head} "), None)
+        if "---" in raw:                            # MoorDyn-C: a header or a terminator
+            name = _section_of(raw)
             if name is None:
-                if section is None and not seen:
-                    deck.front.append(raw)       # a decorative title line
-                    continue
-                raise DeckError(source, no, f"unknown section header '{head.title()}' (a v2 "
-                                "deck has: " + ", ".join(dict.fromkeys(
-                                    k.title() for k in SECTIONS)) + ")")
+                if not seen:
+                    deck.front.append(raw)          # a decorative title line
+                elif section is not None:
+                    closed = (no, raw.strip(), section)
+                    section = None
+                continue
             if name in seen:
-                raise DeckError(source, no, f"section '{head.title()}' appears twice")
+                head = re.sub(r"\s+", " ", raw.strip("- \t")).title()
+                raise DeckError(source, no, f"section '{head}' appears twice")
+            if seen and ORDER.index(name) < ORDER.index(seen[-1]):
+                deck.notes.append(f"Section {name.replace('_', ' ').upper()} (line {no}) "
+                                  f"comes after {seen[-1].replace('_', ' ').upper()}: "
+                                  "MoorDyn-C finds each section anywhere and reads it; "
+                                  "MoorDyn-F reads them in its order only.")
             seen.append(name)
-            section = name
+            section, closed, names = name, None, []
             skip = 2 if name not in ("options", "outputs") else 0
             continue
         if section is None:
-            deck.front.append(raw)
+            if not seen:
+                deck.front.append(raw)
+            elif _strip_comment(raw) and closed is not None:
+                c_no, c_text, c_sec = closed
+                raise DeckError(source, no, f"a row after line {c_no} ({c_text[:60]!r}), "
+                                f"which holds '---' and so ends the {c_sec.upper()} section "
+                                "without opening another: MoorDyn reads no row from there "
+                                "to the next section header (a misspelt header, or dashes "
+                                "in a description?)")
             continue
         if skip:
             skip -= 1
@@ -231,48 +249,40 @@ def parse_deck(text: str, source: str = "<deck>") -> Deck:
                 raise DeckError(source, no, f"a data row where the {section.replace('_', ' ')}"
                                 " table's header lines belong: a table starts with two lines "
                                 "(column names, then units) before its rows")
+            if skip == 1:
+                names = raw.split()
             continue
         body = _strip_comment(raw)
         if not body:
             continue
-        _ROW[section](deck, body.split(), no)
+        if section == "lines" and _v1_lines(names, body.split()):
+            raise DeckError(source, no, "a line in MoorDyn v1's layout (Line LineType "
+                            "UnstrLen NumSegs NodeAnch NodeFair Flags): this reads v2 "
+                            "decks (ID LineType AttachA AttachB UnstrLen NumSegs "
+                            "LineOutputs), as MoorDyn-C 2.7 does: convert the deck to v2")
+        tokens = body.split()
+        bad = next((c for tok in tokens for c in tok if not c.isprintable()), None)
+        if bad is not None and section != "outputs":
+            raise DeckError(source, no, f"holds the control character U+{ord(bad):04X}: a "
+                            "MoorDyn deck is plain text (is the file damaged?)")
+        _ROW[section](deck, tokens, no)
     if "lines" not in seen:
         raise DeckError(source, 0, "has no LINES section (a MoorDyn deck needs at least one "
                         "line; is this a MoorDyn v2 input file?)")
-    if "options" not in seen:
-        raise DeckError(source, 0, "has no OPTIONS section (WtrDpth and the other settings)")
-    if section == "outputs" and not ended:
-        raise DeckError(source, 0, "the OUTPUTS section is not closed by a line of dashes "
-                        "(MoorDyn stops reading there)")
     return deck
 
 
-def _numbers_only(tokens) -> bool:
-    return bool(tokens) and all(_is_number(t) for t in tokens)
-
-
-def _is_number(tok: str) -> bool:
-    try:
-        float(tok)
+def _v1_lines(names: list[str], tok: list[str]) -> bool:
+    """A LINES row of MoorDyn v1: UnstrLen as the third column (by its header, or a length
+    there with two point numbers after the segment count)."""
+    if len(names) > 2 and names[2].lower().startswith("unstrlen"):
         return True
-    except ValueError:
-        return False
+    return (len(tok) >= 6 and is_number(tok[2]) and not tok[2].isdigit()
+            and tok[4].isdigit() and tok[5].isdigit())
 
 
-def _number(source: str, no: int, what: str, tok: str, *, ge: float | None = None,
-            gt: float | None = None) -> float:
-    """A finite number from a token, else a DeckError naming ``what``."""
-    try:
-        v = float(tok)
-    except ValueError:
-        raise DeckError(source, no, f"{what}: {tok!r} is not a number") from None
-    if not math.isfinite(v):
-        raise DeckError(source, no, f"{what}: must be finite, got {tok}")
-    if ge is not None and v < ge:
-        raise DeckError(source, no, f"{what}: must be >= {ge:g}, got {tok}")
-    if gt is not None and v <= gt:
-        raise DeckError(source, no, f"{what}: must be > {gt:g}, got {tok}")
-    return v
+def _numbers_only(tokens) -> bool:
+    return bool(tokens) and all(is_number(t) for t in tokens)
 
 
 def _row_line_type(deck: Deck, tok: list[str], no: int) -> None:
@@ -280,23 +290,41 @@ def _row_line_type(deck: Deck, tok: list[str], no: int) -> None:
     name = tok[0]
     n = len(tok) - 1
     if n == 8:
-        raise DeckError(src, no, f"line type '{name}' has 9 columns; a v2 line type has 10 "
-                        "(TypeName Diam Mass/m EA BA/-zeta EI Cd Ca CdAx CaAx): the bending "
-                        "stiffness EI is missing. Refused, not taken as 0: every method here "
-                        "solves a beam (give EI > 0 [N m2])")
-    if n < 9 or n > 12:
+        raise DeckError(src, no, f"line type '{name}' has 9 columns (MoorDyn v1's layout); a "
+                        "v2 line type has 10 (TypeName Diam Mass/m EA BA/-zeta EI Cd Ca CdAx "
+                        "CaAx): the bending stiffness EI is missing. Refused, not taken as 0: "
+                        "every method here solves a beam (give EI > 0 [N m2])")
+    if n < 9:
         raise DeckError(src, no, f"line type '{name}' has {n + 1} columns; a v2 line type has "
                         "10 (TypeName Diam Mass/m EA BA/-zeta EI Cd Ca CdAx CaAx), or up to "
                         "13 with the VIV columns Cl dF cF")
-    if name in deck.line_types:
+    if name in deck.line_types or name in deck.line_type_errors:
+        first = deck.line_types[name].line if name in deck.line_types else \
+            deck.line_type_errors[name].line
         raise DeckError(src, no, f"line type '{name}' is defined twice (first on line "
-                        f"{deck.line_types[name].line})")
+                        f"{first})")
+    try:
+        deck.line_types[name] = _line_type(src, tok, no)
+    except DeckError as exc:        # raised only if a line uses this type
+        deck.line_type_errors[name] = exc
+
+
+def _line_type(src: str, tok: list[str], no: int) -> DeckLineType:
+    name = tok[0]
     what = f"line type '{name}'"
-    if not _is_number(tok[3]):
-        raise DeckError(src, no, f"{what}: EA: {tok[3]!r} is a nonlinear or viscoelastic "
-                        "stiffness (a table file or EA_static|EA_dynamic); only a constant EA "
-                        "[N] can be imported")
-    v = {c: _number(src, no, f"{what}: {c}", t, ge=0.0)
+    ea = tok[3]
+    if is_comma_number(ea):
+        raise DeckError(src, no, comma_message(f"{what}: EA", ea))
+    if not is_number(ea):
+        kind = "viscoelastic (static|dynamic)" if "|" in ea else "nonlinear (a curve file)"
+        raise DeckError(src, no, f"{what}: EA: {ea!r} is a {kind} stiffness; only a "
+                        "constant EA [N] can be imported")
+    ei = tok[5]
+    if not is_number(ei) and not is_comma_number(ei):
+        raise DeckError(src, no, f"{what}: EI: {ei!r} is a nonlinear bending stiffness (a "
+                        "curve file) or not a number; only a constant EI [N m2] can be "
+                        "imported")
+    v = {c: number(src, no, f"{what}: {c}", t, ge=0.0)
          for c, t in zip(LINE_TYPE_COLUMNS, tok[1:10]) if c != "BA/-zeta"}
     for c in ("Diam", "Mass/m", "EA"):
         if v[c] <= 0.0:
@@ -306,13 +334,16 @@ def _row_line_type(deck: Deck, tok: list[str], no: int) -> None:
                         "without bending stiffness is a cable model, and every method here "
                         "solves a beam (refused, not taken as 0)")
     ba = tok[4]
-    if not all(_is_number(p) for p in ba.split("|")):
-        raise DeckError(src, no, f"{what}: BA/-zeta: {ba!r} is not a number (N s, or minus "
-                        "a fraction of critical damping)")
-    cl = _number(src, no, f"{what}: Cl", tok[10], ge=0.0) if n >= 10 else 0.0
-    deck.line_types[name] = DeckLineType(
-        name=name, diameter=v["Diam"], mass=v["Mass/m"], EA=v["EA"], BA=ba, EI=v["EI"],
-        Cd=v["Cd"], Ca=v["Ca"], CdAx=v["CdAx"], CaAx=v["CaAx"], Cl=cl, line=no)
+    for part in ba.split("|"):
+        if is_comma_number(part):
+            raise DeckError(src, no, comma_message(f"{what}: BA/-zeta", part))
+        if not is_number(part):
+            raise DeckError(src, no, f"{what}: BA/-zeta: {ba!r} is not a number (N s, or "
+                            "minus a fraction of critical damping)")
+    cl = number(src, no, f"{what}: Cl", tok[10], ge=0.0) if len(tok) > 10 else 0.0
+    return DeckLineType(name=name, diameter=v["Diam"], mass=v["Mass/m"], EA=v["EA"], BA=ba,
+                        EI=v["EI"], Cd=v["Cd"], Ca=v["Ca"], CdAx=v["CdAx"], CaAx=v["CaAx"],
+                        Cl=cl, line=no)
 
 
 def _row_id(deck: Deck, tok: list[str], no: int, kind: str, columns: str, count: int) -> int:
@@ -321,7 +352,7 @@ def _row_id(deck: Deck, tok: list[str], no: int, kind: str, columns: str, count:
     if len(tok) < need:
         raise DeckError(deck.source, no, f"{kind} row has {len(tok)} columns; a v2 {kind} "
                         f"has {len(columns.split())} ({columns})")
-    rid = int(_number(deck.source, no, f"{kind} ID", tok[0], gt=0.0))
+    rid = int(number(deck.source, no, f"{kind} ID", tok[0], gt=0.0))
     if rid != count + 1:
         raise DeckError(deck.source, no, f"{kind} ID {tok[0]}: IDs must run 1, 2, 3, ... in "
                         f"order (expected {count + 1})")
@@ -332,18 +363,23 @@ def _row_point(deck: Deck, tok: list[str], no: int) -> None:
     src = deck.source
     pid = _row_id(deck, tok, no, "point", "ID Attachment X Y Z Mass Volume CdA Ca",
                   len(deck.points))
-    xyz = [float(t) if _is_number(t) else None for t in tok[2:5]]
-    rest = [_number(src, no, f"point {pid}: {c}", t)
-            for c, t in zip(POINT_COLUMNS[3:], tok[5:9])]
-    deck.points.append(DeckPoint(pid, tok[1], *xyz, *rest, line=no))
+    xyz = []
+    for c, t in zip("XYZ", tok[2:5]):
+        if is_comma_number(t):
+            raise DeckError(src, no, comma_message(f"point {pid}: {c}", t))
+        xyz.append(float(t) if is_number(t) else None)
+    cols = POINT_COLUMNS_12 if len(tok) >= 12 else POINT_COLUMNS
+    v = {c: number(src, no, f"point {pid}: {c}", t) for c, t in zip(cols[3:], tok[5:])}
+    deck.points.append(DeckPoint(pid, tok[1], *xyz, v["Mass"], v["Volume"], v["CdA"], v["Ca"],
+                                 line=no, force=tuple(v.get(f, 0.0) for f in ("FX", "FY", "FZ"))))
 
 
 def _row_line(deck: Deck, tok: list[str], no: int) -> None:
     src = deck.source
     lid = _row_id(deck, tok, no, "line", "ID LineType AttachA AttachB UnstrLen NumSegs "
                   "LineOutputs", len(deck.lines))
-    length = _number(src, no, f"line {lid}: UnstrLen", tok[4], gt=0.0)
-    nseg = _number(src, no, f"line {lid}: NumSegs", tok[5], ge=1.0)
+    length = number(src, no, f"line {lid}: UnstrLen", tok[4], gt=0.0)
+    nseg = number(src, no, f"line {lid}: NumSegs", tok[5], ge=1.0)
     if nseg != int(nseg):
         raise DeckError(src, no, f"line {lid}: NumSegs: must be a whole number, got {tok[5]}")
     deck.lines.append(DeckLine(lid, tok[1], tok[2], tok[3], length, int(nseg),
@@ -351,21 +387,14 @@ def _row_line(deck: Deck, tok: list[str], no: int) -> None:
 
 
 def _row_option(deck: Deck, tok: list[str], no: int) -> None:
-    src = deck.source
+    """An OPTIONS row, kept as written: MoorDyn-C skips a row without a name, and what an
+    option means is :mod:`riser.io.moordyn.options`'s."""
     if len(tok) < 2:
-        raise DeckError(src, no, f"option row {tok[0]!r} has no key: an option is written "
-                        "'value key [description]'")
+        deck.option_rows.append(("", tok[0], no))
+        return
     value, key = tok[0], tok[1]
-    k = key.lower()
-    if k not in OPTION_KEYS:
-        raise DeckError(src, no, f"unknown option {key!r} (MoorDyn's options: "
-                        + ", ".join(sorted(OPTION_KEYS.values(), key=str.lower)) + ")")
-    if k not in TEXT_OPTIONS:
-        _number(src, no, f"option {key}", value)
-    if k in deck.options:
-        raise DeckError(src, no, f"option {key} given twice (first on line "
-                        f"{deck.options[k][1]})")
-    deck.options[k] = (value, no)
+    deck.option_rows.append((key, value, no))
+    deck.options[key.lower()] = (value, no)
 
 
 def _row_output(deck: Deck, tok: list[str], no: int) -> None:

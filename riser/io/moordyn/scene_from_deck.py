@@ -6,7 +6,8 @@ segments. So the deck must describe one chain of lines joined end to end by free
 at their deck positions. Everything else is refused before anything is written, one line
 naming the deck line: bodies, rods, failures, external loads, waves, a seafloor file, a
 third fixed end, a point with a mass, a volume or drag (a clump weight or a float), a
-coupled point with no position, a branch or a loop.
+coupled point with no position, a branch or a loop, a line type that a used line cannot
+have (no bending stiffness, a nonlinear EA), a number written with a comma.
 
 Mapping (MoorDyn -> scene; MoorDyn's Z is up from the still surface, the scene's y up from
 the seabed, so y = Z + WtrDpth):
@@ -22,7 +23,11 @@ the seabed, so y = Z + WtrDpth):
   a fraction of critical, cBot d / (2 sqrt(k (m + m_a))) (the VFIFE definition); the
   friction is FrictionCoefficient;
 - a steady current (``Currents 1``) is read from current_profile.txt beside the deck
-  (MoorDyn's convention): rows ``z ux uy uz``, one direction at every depth.
+  (MoorDyn's convention): rows ``z ux uy uz``, one direction at every depth;
+- the options as MoorDyn-C 2.7 reads them (:mod:`riser.io.moordyn.options`): its defaults
+  g = 9.80665 m/s2 and a density of 1025 kg/m3 when the deck gives none, the water depth
+  lowered to the deepest point as MoorDyn-C lowers it. Where each value came from is
+  written as a comment in the scene file.
 """
 
 from __future__ import annotations
@@ -35,38 +40,36 @@ from ...errors import SceneError
 from ...scene import Scene
 from ..scene_file import scene_from_dict
 from ..toml_text import dumps
-from .deck import Deck, DeckError, DeckPoint, read_deck
-
-#: MoorDyn-C's defaults of the options a scene needs (docs: "Options")
-DEFAULTS = {"g": 9.81, "rho": 1025.0, "kbot": 3.0e6, "cbot": 3.0e5}
-_ALIASES = {"g": ("g", "gravity"), "rho": ("rho", "rhow"), "kbot": ("kbot", "kb"),
-            "cbot": ("cbot", "cb")}
-
-
-def _opt(deck: Deck, key: str) -> tuple[float, int, bool]:
-    """(value, line, given) of an option by any of its spellings."""
-    for k in _ALIASES.get(key, (key,)):
-        if k in deck.options:
-            return float(deck.options[k][0]), deck.options[k][1], True
-    return DEFAULTS.get(key, 0.0), 0, False
+from .deck import Deck, DeckPoint, read_deck, read_text
+from .options import Options, read_options
+from .tokens import DeckError, comma_message, is_comma_number
 
 
 def import_deck(path: str | Path, name: str | None = None) -> tuple[str, Scene, list[str]]:
     """Read the deck at ``path``: (the scene's TOML text, the validated scene, the notes
-    that were written into it as comments). Raise :class:`DeckError` naming the deck line."""
+    that were written into it as comments). The scene's name is ``name`` or the deck's
+    file name, made a valid scene name (lower case, digits, dashes), whatever file the
+    scene is written to. Raise :class:`DeckError` naming the deck line."""
     path = Path(path)
     deck = read_deck(path)
-    name = name or _scene_name(path.stem)
-    data, notes, where = scene_dict(deck, name, path.parent / "current_profile.txt")
+    name = _scene_name(name or path.stem)
+    data, notes, where, env_comments = scene_dict(deck, name,
+                                                  path.parent / "current_profile.txt")
     header = [f"Imported from the MoorDyn deck {path.name} by riser-verify import-moordyn.",
               *notes]
-    text = dumps(data, header=header)
+    text = dumps(data, header=[_printable(h) for h in header],
+                 comments={"environment": [_printable(c) for c in env_comments]})
     try:
         scene = scene_from_dict(data, f"{path.name} (imported)")
     except SceneError as exc:   # a value outside a scene's range: name the deck line
         line = next((no for prefix, no in where.items() if exc.key.startswith(prefix)), 0)
         raise DeckError(str(path), line, f"{exc.key}: {exc.message}") from None
     return text, scene, notes
+
+
+def _printable(text: str) -> str:
+    """A comment line: a character TOML does not allow in a comment written as \\xNN."""
+    return "".join(c if c.isprintable() else f"\\x{ord(c):02x}" for c in text)
 
 
 def _scene_name(stem: str) -> str:
@@ -83,13 +86,10 @@ def _refuse_sections(deck: Deck) -> None:
         if sec in why:
             raise DeckError(deck.source, no, f"{sec.replace('_', ' ').upper()}: {why[sec]}; "
                             "a scene holds one line of segments between two fixed ends")
-    for key, what in (("wavekin", "waves"), ("seafloorfile", "a seafloor file (bathymetry)"),
-                      ("waterkin", "water kinematics (MoorDyn-F)")):
-        if key in deck.options and deck.options[key][0] not in ("0", "0.0", "none", "None",
-                                                                '""', "''"):
-            raise DeckError(deck.source, deck.options[key][1], f"option {key}: {what} cannot "
-                            "be imported: a scene has a still surface, a flat seabed and a "
-                            "steady current")
+
+
+_POINT_REF = re.compile(r"(?i)(?:p|point|c|con)?(\d+)")
+_ROD_END = re.compile(r"(?i)r(?:od)?\d+[ab]")
 
 
 def _chain(deck: Deck) -> tuple[list[tuple[int, bool]], DeckPoint, DeckPoint]:
@@ -100,14 +100,16 @@ def _chain(deck: Deck) -> tuple[list[tuple[int, bool]], DeckPoint, DeckPoint]:
     npt = len(deck.points)
     ends: dict[int, list[tuple[int, str]]] = {}
     for i, ln in enumerate(deck.lines):
-        if ln.line_type not in deck.line_types:
+        if ln.line_type not in deck.line_types and ln.line_type not in deck.line_type_errors:
             raise DeckError(src, ln.line, f"line {ln.id}: unknown line type {ln.line_type!r}"
                             f" (defined: {', '.join(deck.line_types) or 'none'})")
         for end, att in (("A", ln.attach_a), ("B", ln.attach_b)):
-            if not att.isdigit():
-                raise DeckError(src, ln.line, f"line {ln.id}: Attach{end} {att!r} is not a "
-                                "point ID (a rod end, R#A/R#B, cannot be imported)")
-            pid = int(att)
+            ref = _POINT_REF.fullmatch(att)
+            if ref is None:
+                what = "a rod end, R#A/R#B," if _ROD_END.fullmatch(att) else "not a point"
+                raise DeckError(src, ln.line, f"line {ln.id}: Attach{end} {att!r} is {what} "
+                                "and cannot be imported (a point ID, as 3 or P3)")
+            pid = int(ref.group(1))
             if not 1 <= pid <= npt:
                 raise DeckError(src, ln.line, f"line {ln.id}: Attach{end} = {pid}: no such "
                                 f"point (IDs 1..{npt})")
@@ -131,13 +133,17 @@ def _chain(deck: Deck) -> tuple[list[tuple[int, bool]], DeckPoint, DeckPoint]:
                 raise DeckError(src, p.line, f"point {p.id} ({p.attachment}) holds "
                                 f"{len(att)} lines; a scene's ends each hold one")
         elif att:
-            if len(att) != 2:
-                raise DeckError(src, p.line, f"point {p.id} (free) joins {len(att)} line "
-                                "ends; a scene is one chain: a free point joins exactly two")
             if p.mass or p.volume or p.CdA or p.Ca:
                 raise DeckError(src, p.line, f"point {p.id}: a free point with mass, volume, "
                                 "CdA or Ca (a clump weight or a float) cannot be imported: "
                                 "a scene's joints carry no point loads")
+            if any(p.force):
+                raise DeckError(src, p.line, f"point {p.id}: a free point with a steady force "
+                                "FX FY FZ (a point load) cannot be imported: a scene's "
+                                "joints carry no point loads")
+            if len(att) != 2:
+                raise DeckError(src, p.line, f"point {p.id} (free) joins {len(att)} line "
+                                "end(s); a scene is one chain: a free point joins exactly two")
     if len(fixed) < 2:
         raise DeckError(src, 0, f"has {len(fixed)} fixed or coupled line end(s); a scene "
                         "needs two (the anchor and the hang-off)")
@@ -152,7 +158,7 @@ def _chain(deck: Deck) -> tuple[list[tuple[int, bool]], DeckPoint, DeckPoint]:
         used.add(i)
         ln = deck.lines[i]
         order.append((i, end == "B"))
-        pid = int(ln.attach_b if end == "A" else ln.attach_a)
+        pid = int(_POINT_REF.fullmatch(ln.attach_b if end == "A" else ln.attach_a).group(1))
     if pid != top.id or len(used) != len(deck.lines):
         stray = next(ln for k, ln in enumerate(deck.lines) if k not in used)
         raise DeckError(src, stray.line, f"line {stray.id} is not on the chain from point "
@@ -160,47 +166,70 @@ def _chain(deck: Deck) -> tuple[list[tuple[int, bool]], DeckPoint, DeckPoint]:
     return order, bottom, top
 
 
+def _depth(deck: Deck, opts: Options, notes: list[str]) -> tuple[float, int, str]:
+    """The water depth as MoorDyn-C 2.7 takes it: WtrDpth (default 0), lowered to the
+    deepest point; (depth, its deck line, where it came from)."""
+    given = opts.depth
+    depth, line = (given, opts.depth_line) if given is not None else (0.0, 0)
+    origin = f"option WtrDpth (deck line {line})" if given is not None else ""
+    deep = min((p for p in deck.points if p.z is not None), key=lambda p: (p.z, p.id),
+               default=None)
+    if deep is not None and deep.z < -depth:
+        was = (f"WtrDpth = {given:g} m (deck line {line}) is above point {deep.id} (Z = "
+               f"{deep.z:g} m, deck line {deep.line})" if given is not None else
+               f"The deck gives no WtrDpth (MoorDyn-C's default 0 m); its deepest point is "
+               f"point {deep.id} (Z = {deep.z:g} m, deck line {deep.line})")
+        depth, line = -deep.z, deep.line
+        origin = (f"the depth of point {deep.id} (deck line {deep.line}), to which MoorDyn-C "
+                  "lowers its seabed")
+        notes.append(f"{was}: MoorDyn-C lowers its seabed to that point ('Water depth set to "
+                     f"point {deep.id} z position'), and so does this import: water depth "
+                     f"{depth:g} m.")
+    if depth <= 0.0:
+        raise DeckError(deck.source, line, "the water depth must be > 0 m: give WtrDpth [m] "
+                        "(the seabed is at Z = -WtrDpth; without it MoorDyn-C takes the "
+                        "depth of the deepest point)")
+    return depth, line, origin
+
+
 def scene_dict(deck: Deck, name: str, current_file: Path | None
-               ) -> tuple[dict, list[str], dict[str, int]]:
-    """The scene structure of a deck, the notes, and key prefix -> deck line (for errors)."""
-    src = deck.source
+               ) -> tuple[dict, list[str], dict[str, int], list[str]]:
+    """The scene structure of a deck, the notes, key prefix -> deck line (for errors),
+    and the comment lines of its [environment] (where g, the density and the depth came
+    from)."""
     _refuse_sections(deck)
-    depth_given = "wtrdpth" in deck.options
-    depth = deck.option("WtrDpth")
-    if not depth_given or depth <= 0.0:
-        raise DeckError(src, deck.option_line("WtrDpth"), "option WtrDpth: the water depth "
-                        "[m] must be given and > 0 (the seabed is at Z = -WtrDpth)")
+    opts = read_options(deck)
+    notes = [*deck.notes, *opts.notes]
     order, bottom, top = _chain(deck)
-    notes: list[str] = []
-    where: dict[str, int] = {"environment.water_depth": deck.option_line("WtrDpth")}
+    used_types = list(dict.fromkeys(deck.lines[i].line_type for i, _ in order))
+    for tname in used_types:                 # a type no line uses may hold anything
+        if tname in deck.line_type_errors:
+            raise deck.line_type_errors[tname]
+    depth, depth_line, depth_from = _depth(deck, opts, notes)
+    where: dict[str, int] = {"environment.water_depth": depth_line}
     dx, dy = top.x - bottom.x, top.y - bottom.y
     span = math.hypot(dx, dy)
     if span < 1e-9:
-        raise DeckError(src, top.line, f"points {bottom.id} and {top.id} are vertically "
-                        "aligned: a scene's hang-off lies at a larger x than its anchor")
+        raise DeckError(deck.source, top.line, f"points {bottom.id} and {top.id} are "
+                        "vertically aligned: a scene's hang-off lies at a larger x than its "
+                        "anchor")
     ex = (dx / span, dy / span)
     ya, yh = bottom.z + depth, top.z + depth
-    if ya < -1e-9:
-        raise DeckError(src, bottom.line, f"point {bottom.id} is {-ya:g} m below the seabed "
-                        f"(Z = {bottom.z:g} < -WtrDpth = {-depth:g})")
     if yh > depth + 1e-9:
-        raise DeckError(src, top.line, f"point {top.id} is above the still water surface (Z = "
-                        f"{top.z:g} > 0); the scene's line is submerged")
+        raise DeckError(deck.source, top.line, f"point {top.id} is above the still water "
+                        f"surface (Z = {top.z:g} > 0); the scene's line is submerged")
     where["ends"] = top.line
-    g, g_line, _ = _opt(deck, "g")
-    rho, rho_line, _ = _opt(deck, "rho")
-    where.update({"environment.gravity": g_line, "environment.water_density": rho_line})
+    where.update({"environment.gravity": opts.g_line,
+                  "environment.water_density": opts.rho_line})
     data: dict = {"name": name,
-                  "title": next((f.strip() for f in deck.front if f.strip() and
-                                 f.strip()[0] not in "-!#%"), f"MoorDyn deck {name}")[:200],
-                  "source": f"MoorDyn v2 deck {Path(src).name}",
-                  "environment": {"gravity": g, "water_density": rho, "water_depth": depth}}
-    current = _current(deck, current_file, ex, depth, notes) if current_file else None
+                  "title": _title(deck, name),
+                  "source": f"MoorDyn v2 deck {Path(deck.source).name}",
+                  "environment": {"gravity": opts.g, "water_density": opts.rho,
+                                  "water_depth": depth}}
+    current = _current(deck, opts, current_file, ex, depth, notes) if current_file else None
     if current:
         data["environment"]["current"] = current
-        where["environment.current"] = deck.option_line("Currents")
-
-    used_types = list(dict.fromkeys(deck.lines[i].line_type for i, _ in order))
+        where["environment.current"] = opts.currents_line
     data["line_types"] = {}
     for tname in used_types:
         lt = deck.line_types[tname]
@@ -214,6 +243,9 @@ def scene_dict(deck: Deck, name: str, current_file: Path | None
                          "axial added mass; it affects dynamics only)")
         if lt.Cl:
             notes.append(f"line type {tname}: VIV lift Cl = {lt.Cl:g} dropped (not modelled)")
+        if lt.BA not in ("0", "0.0"):
+            notes.append(f"line type {tname}: BA/-zeta = {lt.BA} dropped (MoorDyn's internal "
+                         "axial damping, dynamics only; the scene's line has none)")
     data["segments"] = []
     for k, (i, rev) in enumerate(order):
         ln = deck.lines[i]
@@ -222,10 +254,10 @@ def scene_dict(deck: Deck, name: str, current_file: Path | None
                                                                      else "")})
         where[f"segments[{k}]"] = ln.line
     data["ends"] = {"anchor": [0.0, max(ya, 0.0)], "hang_off": [span, yh]}
-    seabed = _seabed(deck, deck.line_types[deck.lines[order[0][0]].line_type], rho, notes)
+    seabed = _seabed(deck, opts, deck.line_types[deck.lines[order[0][0]].line_type], notes)
     if seabed:
         data["seabed"] = seabed
-        where["seabed"] = deck.option_line("kBot")
+        where["seabed"] = opts.kbot_line
     notes.append(f"Ends: point {bottom.id} ({bottom.attachment}) -> anchor, point {top.id} "
                  f"({top.attachment}) -> hang-off, horizontal direction ({ex[0]:.6g}, "
                  f"{ex[1]:.6g}) of MoorDyn's X-Y plane; y = Z + WtrDpth.")
@@ -234,55 +266,62 @@ def scene_dict(deck: Deck, name: str, current_file: Path | None
                      "MoorDyn (no moment); the scene's segments are continuous beams.")
     notes.append("MoorDyn mesh, not carried: " + ", ".join(
         f"line {deck.lines[i].id} {deck.lines[i].segments} segments" for i, _ in order))
-    return data, notes, where
+    env_comments = [
+        f"water_density {opts.rho:g} kg/m3 {opts.given('rho')}, gravity {opts.g:g} m/s2 "
+        f"{opts.given('g')}: as MoorDyn-C 2.7 reads the deck (its defaults 1025 kg/m3 and "
+        "9.80665 m/s2; the density from rho, Rho or WtrDnsty, never rhoW)",
+        f"water_depth {depth:g} m: {depth_from or 'option WtrDpth'}"]
+    return data, notes, where, env_comments
 
 
-def _seabed(deck: Deck, lt, rho: float, notes: list[str]) -> dict | None:
-    kbot, _, kgiven = _opt(deck, "kbot")
-    cbot, _, cgiven = _opt(deck, "cbot")
+def _title(deck: Deck, name: str) -> str:
+    """The first line of the front matter that is text, printable characters only."""
+    for f in deck.front:
+        f = "".join(c if c.isprintable() else " " for c in f).strip()
+        if f and f[0] not in "-!#%":
+            return f[:200]
+    return f"MoorDyn deck {name}"
+
+
+def _seabed(deck: Deck, opts: Options, lt, notes: list[str]) -> dict | None:
+    kbot, cbot = opts.kbot, opts.cbot
     if kbot < 0.0 or cbot < 0.0:
-        raise DeckError(deck.source, deck.option_line("kBot" if kbot < 0 else "cBot"),
+        raise DeckError(deck.source, opts.kbot_line if kbot < 0 else opts.cbot_line,
                         "kBot and cBot must be >= 0")
     if kbot == 0.0:
         notes.append("kBot = 0: no seabed contact.")
         return None
     k = kbot * lt.diameter
-    madd = lt.Ca * rho * math.pi / 4.0 * lt.diameter ** 2
+    # d * d, not d ** 2: a huge diameter gives inf (refused by the scene's range check),
+    # where ** raised OverflowError
+    madd = lt.Ca * opts.rho * math.pi / 4.0 * lt.diameter * lt.diameter
     zeta = cbot * lt.diameter / (2.0 * math.sqrt(k * (lt.mass + madd)))
-    fric = deck.option("FrictionCoefficient", 0.0)
-    mu_t, mu_a = deck.option("MU_KT", None), deck.option("MU_KA", None)
-    if mu_t is not None or mu_a is not None:
-        if mu_t != mu_a or "frictioncoefficient" in deck.options:
-            raise DeckError(deck.source, deck.option_line("MU_KT") or deck.option_line("MU_KA"),
-                            "MU_KT and MU_KA (MoorDyn-F): the scene has one friction "
-                            "coefficient; give FrictionCoefficient, or equal MU_KT and MU_KA")
-        fric = mu_t
     notes.append(f"Seabed: stiffness = kBot x Diam of the bottom line ({lt.name}) = "
                  f"{kbot:g} x {lt.diameter:g} = {k:g} N/m2"
-                 + ("" if kgiven else " (kBot not given: MoorDyn's default)")
+                 + ("" if opts.kbot_line else " (kBot not given: MoorDyn-C's default)")
                  + f"; damping = cBot d / (2 sqrt(k (m + m_a))) = {zeta:.6g} of critical"
-                 + ("" if cgiven else " (cBot: MoorDyn's default)") + ".")
+                 + ("" if opts.cbot_line else " (cBot: MoorDyn-C's default)") + ".")
     if len({t.diameter for t in deck.line_types.values()}) > 1:
         notes.append("MoorDyn's contact per metre is kBot x d of each line: lines of another "
                      "diameter on the seabed would have another stiffness there.")
-    return {"stiffness": k, "friction": fric, "damping": min(zeta, 10.0)}
+    return {"stiffness": k, "friction": opts.friction, "damping": min(zeta, 10.0)}
 
 
-def _current(deck: Deck, path: Path, ex, depth: float, notes: list[str]) -> dict | None:
+def _current(deck: Deck, opts: Options, path: Path, ex, depth: float,
+             notes: list[str]) -> dict | None:
     """The scene's [environment.current] from MoorDyn's steady current profile."""
-    mode = deck.option("Currents", 0.0)
+    mode = opts.currents
     if mode == 0:
         return None
     if mode != 1:
-        raise DeckError(deck.source, deck.option_line("Currents"), f"option Currents = "
-                        f"{mode:g}: only 1 (a steady profile, current_profile.txt) can be "
-                        "imported; a scene's current is steady and depth-dependent")
-    where = str(path)
-    try:
-        rows = path.read_text(encoding="utf-8", errors="replace").splitlines()
-    except OSError as exc:
-        raise DeckError(deck.source, deck.option_line("Currents"), f"Currents = 1 needs "
-                        f"{path.name} beside the deck ({exc.strerror or exc})") from None
+        raise DeckError(deck.source, opts.currents_line, f"option Currents = {mode:g}: only 1 "
+                        "(a steady profile, current_profile.txt) can be imported; a scene's "
+                        "current is steady and depth-dependent")
+    if not path.exists():
+        raise DeckError(deck.source, opts.currents_line, f"Currents = 1 needs "
+                        f"{path.name} beside the deck (No such file or directory)")
+    text, where = read_text(path, "a MoorDyn current profile")
+    rows = text.splitlines()
     ez = (ex[1], -ex[0])
     table = []
     for no, raw in enumerate(rows[3:], start=4):
@@ -291,6 +330,9 @@ def _current(deck: Deck, path: Path, ex, depth: float, notes: list[str]) -> dict
             continue
         if len(tok) < 2:
             raise DeckError(where, no, "a row is 'z ux [uy [uz]]' [m, m/s]")
+        for c, t in zip(("z", "ux", "uy", "uz"), tok):
+            if is_comma_number(t):
+                raise DeckError(where, no, comma_message(c, t))
         try:
             z, ux, uy, uz = (float(t) for t in (tok + ["0", "0"])[:4])
         except ValueError:
@@ -306,6 +348,15 @@ def _current(deck: Deck, path: Path, ex, depth: float, notes: list[str]) -> dict
     for a, b in zip(table, table[1:]):
         if b[0] == a[0]:
             raise DeckError(where, b[3], f"depth {b[0] - depth:g} m given twice")
+    below = [r for r in table if r[0] < 0.0]
+    if below:       # rows below the seabed: the profile's value at the seabed instead
+        above = [r for r in table if r[0] >= 0.0]
+        a, b = below[-1], (above[0] if above else below[-1])
+        f = 0.0 if b[0] == a[0] else -a[0] / (b[0] - a[0])
+        seabed = (0.0, a[1] + f * (b[1] - a[1]), a[2] + f * (b[2] - a[2]), a[3])
+        table = ([] if above and above[0][0] == 0.0 else [seabed]) + above
+        notes.append(f"{path.name}: {len(below)} row(s) below the seabed (Z < -WtrDpth) "
+                     "replaced by the profile's value at the seabed (no node lies below).")
     ref = max(table, key=lambda r: math.hypot(r[1], r[2]))
     umax = math.hypot(ref[1], ref[2])
     if umax == 0.0:

@@ -8,17 +8,29 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from riser.errors import SceneError
 from verification.catalog import resolve
 
 
 def cmd_import_moordyn(args) -> int:
-    """``riser-verify import-moordyn DECK [--out SCENE.toml]``."""
+    """``riser-verify import-moordyn DECK [--out SCENE.toml]``. The scene is named after
+    the deck, whatever the file it is written to (any name, in any folder; an existing
+    folder or a path ending in a separator gets DECK.toml inside it)."""
     from riser.io.moordyn.scene_from_deck import import_deck
     deck = Path(args.deck)
     out = Path(args.out) if args.out else deck.with_suffix(".toml")
-    text, scene, notes = import_deck(deck, name=out.stem if args.out else None)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(text)
+    if args.out and (out.is_dir() or args.out.endswith(("/", "\\"))):
+        out = out / f"{deck.stem}.toml"
+    if out.resolve() == deck.resolve():
+        raise SceneError("command line", "--out", f"{out} is the deck itself; give another "
+                         "file for the scene")
+    text, scene, notes = import_deck(deck)
+    try:
+        out.parent.mkdir(parents=True, exist_ok=True)
+        out.write_text(text)
+    except OSError as exc:
+        raise SceneError("command line", "--out", f"cannot write {out} "
+                         f"({exc.strerror or exc})") from None
     for n in notes:
         print(f"  {n}")
     print(f"{deck.name}: {len(scene.segments)} segment(s), {scene.total_length:g} m; wrote {out}")
@@ -45,7 +57,8 @@ def add_parsers(sub) -> None:
     s = sub.add_parser("import-moordyn", help="a MoorDyn v2 deck -> a scene file")
     s.add_argument("deck", help="MoorDyn v2 input file (current_profile.txt beside it if "
                    "Currents = 1)")
-    s.add_argument("--out", help="scene file to write (default: the deck's name with .toml)")
+    s.add_argument("--out", help="scene file to write, any name in any folder (default: "
+                   "beside the deck, its name with .toml); the scene is named after the deck")
     s.set_defaults(func=cmd_import_moordyn)
     s = sub.add_parser("export-moordyn", help="a scene -> a MoorDyn v2 deck")
     s.add_argument("scene", help="built-in scene name or path to a .toml scene file")

@@ -1,0 +1,118 @@
+"""Ctrl-C (SIGINT) at any moment of a run: one line and exit 130, never a traceback.
+
+An interrupt is a ``KeyboardInterrupt`` in the main thread, which the command line turns
+into its one line. What printed tracebacks before was what runs *beside* that handler:
+
+- worker processes started while Ctrl-C went to the terminal's whole process group: a
+  spawned worker imports the project before its initializer ignores SIGINT, and printed
+  its own traceback when it came then. :func:`sigint_blocked` is held while the pool
+  starts its workers: a signal mask is inherited by the child across fork and exec (what
+  ``multiprocessing.resource_tracker`` does for its own process), so a worker is born
+  deaf to Ctrl-C and stays so (:func:`worker_ignores_sigint`);
+- an interrupt in the middle of starting or stopping the pool (a spawn's pickled data cut
+  in half, workers left running): :func:`held_interrupts` holds a Ctrl-C back until
+  the start or the clean-up is complete, then raises it;
+- a Ctrl-C while the interpreter exits (joining the pool's threads in ``atexit``):
+  :func:`exit_quietly_on_interrupt`, installed by the command line once a command has
+  ended; and for the last instants of the exit, when Python has put the default
+  disposition back (the process died of SIGINT with no line, measured once in 22
+  interrupts), SIGINT is ignored by an ``atexit`` callback registered when this module is
+  imported, so that it runs after those of multiprocessing and distributed (imported
+  later: ``atexit`` runs the last registered first).
+
+Imports nothing of ``verification``.
+"""
+
+from __future__ import annotations
+
+import atexit
+import contextlib
+import os
+import signal
+import sys
+import threading
+
+_PROGRAM = False                 # exit_quietly_on_interrupt was called: the program exits
+
+
+def _main_thread() -> bool:
+    return threading.current_thread() is threading.main_thread()
+
+
+@contextlib.contextmanager
+def held_interrupts():
+    """Ctrl-C is noted, not raised, in the block; raised as ``KeyboardInterrupt`` at its
+    end (when the handler before it raised one). Outside the main thread: nothing."""
+    if not _main_thread():
+        yield
+        return
+    got: list[int] = []
+    previous = signal.signal(signal.SIGINT, lambda signum, frame: got.append(signum))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+        if got and previous is signal.default_int_handler:
+            raise KeyboardInterrupt
+
+
+@contextlib.contextmanager
+def sigint_blocked():
+    """SIGINT blocked in this thread for the block: the processes it starts inherit the
+    mask. A Ctrl-C meanwhile stays pending and is delivered at the end.
+
+    multiprocessing's resource tracker is started first: starting it unblocks SIGINT in
+    the calling thread when it has started its own process (``ensure_running`` in
+    ``multiprocessing/resource_tracker.py``), which inside the block would undo it before
+    the first worker is spawned (measured: the workers' SigBlk was 0 without this)."""
+    if not hasattr(signal, "pthread_sigmask"):
+        yield
+        return
+    with contextlib.suppress(Exception):          # POSIX; idempotent once running
+        from multiprocessing import resource_tracker
+        resource_tracker.ensure_running()
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)
+
+
+def worker_ignores_sigint() -> None:
+    """In a worker process: SIGINT ignored (the submitting process handles Ctrl-C and
+    stops the workers), then unblocked (a pending one is dropped)."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if hasattr(signal, "pthread_sigmask"):
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+
+
+def exit_quietly_on_interrupt(said: bool) -> None:
+    """From now on (a command has ended; the interpreter exits), a Ctrl-C ends the
+    process at once with exit 130, printing ``error: interrupted`` unless ``said`` (the
+    line was printed already). Only in the main thread of the program itself."""
+    global _PROGRAM
+    if not _main_thread():
+        return
+    _PROGRAM = True
+    for stream in (sys.stdout, sys.stderr):
+        with contextlib.suppress(Exception):
+            stream.flush()
+
+    def handler(signum, frame):
+        if not said:
+            with contextlib.suppress(Exception):
+                sys.stdout.flush()
+            with contextlib.suppress(Exception):
+                os.write(2, b"error: interrupted\n")
+        os._exit(130)
+    signal.signal(signal.SIGINT, handler)
+
+
+@atexit.register
+def _ignore_at_the_very_end() -> None:
+    """The program's last ``atexit`` callback: SIGINT ignored from here to the end (the
+    interpreter would reset a Python handler to the default, and a Ctrl-C now would
+    kill the process without a word). In-process callers of ``main`` (tests) keep theirs."""
+    if _PROGRAM and _main_thread():
+        with contextlib.suppress(Exception):
+            signal.signal(signal.SIGINT, signal.SIG_IGN)
