@@ -68,11 +68,11 @@ class Profile:
 def _parabolic_peak(s: np.ndarray, v: np.ndarray, i: int) -> tuple[float, float]:
     """Vertex (s, v) of the parabola through points i-1, i, i+1 (falls back to point i).
 
-    Falls back to point i too where the vertex rises above point i by more than half the
-    larger drop to its neighbours: a parabola through a smooth peak rises by at most an
-    eighth of it (uniform stations; half leaves room for uneven ones), so more is a jump
-    between the stations (the catenary model's moment at the touchdown), which a fit
-    turned into a peak twice the true one (3.11e6 for 1.41e6 N m on hard-deep-scr)."""
+    Falls back to point i too where the parabola misses the next point out on the steeper
+    side (i-2 or i+2) by more than the larger drop from point i to its neighbours: a
+    smooth peak's parabola passes near it (a cubic error), a jump between the stations
+    does not (the catenary model's moment at the touchdown, which a fit turned into a
+    peak twice the true one: 3.11e6 for 1.41e6 N m on hard-deep-scr)."""
     if i <= 0 or i >= len(s) - 1:
         return float(s[i]), float(v[i])
     s0, s1, s2 = s[i - 1], s[i], s[i + 1]
@@ -89,7 +89,9 @@ def _parabolic_peak(s: np.ndarray, v: np.ndarray, i: int) -> tuple[float, float]
         return float(s1), float(v1)
     c = v1 - a * s1 * s1 - b * s1
     vv = a * sv * sv + b * sv + c
-    if abs(vv - v1) > 0.5 * max(abs(v1 - v0), abs(v1 - v2)):
+    drop = max(abs(v1 - v0), abs(v1 - v2))
+    k = i - 2 if abs(v1 - v0) >= abs(v1 - v2) else i + 2
+    if 0 <= k < len(s) and abs(a * s[k] * s[k] + b * s[k] + c - v[k]) > drop:
         return float(s1), float(v1)
     return float(sv), float(vv)
 

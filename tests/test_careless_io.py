@@ -114,9 +114,9 @@ def test_a_jump_between_stations_is_not_fitted_into_a_peak():
     import numpy as np
     from riser.profile import _parabolic_peak
     # the stations of hard-deep-scr's analytic catenary profile at its touchdown
-    s = np.array([862.0, 862.25973242, 863.73555174])
-    v = np.array([0.0, 1408958.37311231, 1408805.87977304])
-    assert _parabolic_peak(s, v, 1) == (s[1], v[1])
+    s = np.array([860.7839131, 862.0, 862.25973242, 863.73555174])
+    v = np.array([0.0, 0.0, 1408958.37311231, 1408805.87977304])
+    assert _parabolic_peak(s, v, 2) == (s[2], v[2])
     s = np.linspace(-1.0, 1.0, 5) + 0.1
     v = 10.0 - (s - 0.13) ** 2
     sv, vv = _parabolic_peak(s, v, 2)
