@@ -105,19 +105,3 @@ def test_what_is_still_to_come_is_never_printed_as_inf():
     assert "inf" not in _to_come(float("inf"), " m", "displacement")
     assert _to_come(0.012, " m", "displacement") == "an estimated 0.012 m of displacement"
     assert _to_come(float("nan"), "", "the largest tension") == "no test on the largest tension"
-
-
-def test_a_jump_between_stations_is_not_fitted_into_a_peak():
-    # the catenary model's moment jumps at the touchdown; a station 1e-4 m past the jump
-    # made the parabola through three stations peak at twice the largest value (3.11e6
-    # for 1.41e6 N m on hard-deep-scr); a smooth peak still gets its vertex
-    import numpy as np
-    from riser.profile import _parabolic_peak
-    # the stations of hard-deep-scr's analytic catenary profile at its touchdown
-    s = np.array([860.7839131, 862.0, 862.25973242, 863.73555174])
-    v = np.array([0.0, 0.0, 1408958.37311231, 1408805.87977304])
-    assert _parabolic_peak(s, v, 2) == (s[2], v[2])
-    s = np.linspace(-1.0, 1.0, 5) + 0.1
-    v = 10.0 - (s - 0.13) ** 2
-    sv, vv = _parabolic_peak(s, v, 2)
-    assert sv == pytest.approx(0.13) and vv == pytest.approx(10.0)
