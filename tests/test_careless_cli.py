@@ -40,7 +40,7 @@ import pytest
 
 from verification import cli
 from verification.cli.common import Range, check_ranges
-from verification.comparison.formatting import length, with_unit
+from verification.report.units import length, with_unit
 from verification.runtime import interrupts, outdir, progress as pg
 from verification.runtime.scheduler_probe import PROBE_TIMEOUT_S, ProbeFailed, probe
 from verification.sweeps.run import duration_text, estimate_line
@@ -117,15 +117,20 @@ GARBAGE = {
 }
 
 
-@needs_dask
-@pytest.mark.parametrize("server", [None], indirect=True, ids=["silent (the dashboard's port)"])
-def test_a_silent_server_is_refused_within_10_s(run_cli, server, tmp_path):
+def sweep_at(run_cli, server, tmp_path):
+    """Run a sweep with ``--scheduler`` at ``server``: (exit code, stdout, stderr, its one
+    line, seconds taken, the --out folder, the address)."""
     out, address = tmp_path / "out", f"tcp://127.0.0.1:{server.port}"
     t0 = time.monotonic()
     code, stdout, err = run_cli(["sweep", str(sweep_file(tmp_path)), "--scheduler", address,
                                  "--out", str(out)])
-    took = time.monotonic() - t0
-    line = one_line(err)
+    return code, stdout, err, one_line(err), time.monotonic() - t0, out, address
+
+
+@needs_dask
+@pytest.mark.parametrize("server", [None], indirect=True, ids=["silent (the dashboard's port)"])
+def test_a_silent_server_is_refused_within_10_s(run_cli, server, tmp_path):
+    code, stdout, err, line, took, out, address = sweep_at(run_cli, server, tmp_path)
     assert code == 2 and stdout == "", err
     assert f"--scheduler {address}: not a Dask scheduler" in line
     assert f"within {PROBE_TIMEOUT_S:g} s" in line and "tcp://HOST:8786" in line
@@ -136,12 +141,7 @@ def test_a_silent_server_is_refused_within_10_s(run_cli, server, tmp_path):
 @needs_dask
 @pytest.mark.parametrize("server", list(GARBAGE.values()), indirect=True, ids=list(GARBAGE))
 def test_a_server_answering_garbage_is_refused_at_once(run_cli, server, tmp_path):
-    out, address = tmp_path / "out", f"tcp://127.0.0.1:{server.port}"
-    t0 = time.monotonic()
-    code, stdout, err = run_cli(["sweep", str(sweep_file(tmp_path)), "--scheduler", address,
-                                 "--out", str(out)])
-    took = time.monotonic() - t0
-    line = one_line(err)
+    code, stdout, err, line, took, out, _ = sweep_at(run_cli, server, tmp_path)
     assert code == 2 and stdout == "", err
     assert "not a Dask scheduler" in line and "answered" in line and "MemoryError" not in line
     assert took < 3.0, took                        # measured: ~0.01 s after the imports

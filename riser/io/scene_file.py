@@ -16,6 +16,7 @@ from __future__ import annotations
 import errno
 import math
 import os
+import stat
 import tomllib
 from pathlib import Path
 
@@ -36,25 +37,30 @@ from ..settings import AnalyticSettings, BVPSettings, VFIFESettings
 from ..spec import specs
 from .toml_table import Table
 
-
 # ---------------------------------------------------------------------- loading
 #: the longest name of one file or folder most file systems take [bytes]
 NAME_MAX = 255
 
 
-def path_problem(path: str | Path) -> str | None:
-    """Why ``path`` cannot even be looked at (a name too long for the file system, a
-    component that is a file, a loop of links), or None: ``Path.exists`` and
-    ``Path.is_file`` raise OSError on such names instead of answering."""
+#: the errors :func:`path_problem` reports: a name too long, a component that is a file,
+#: a loop of links, a folder that may not be searched
+PATH_ERRORS = (errno.ENAMETOOLONG, errno.ENOTDIR, errno.ELOOP, errno.EACCES)
+
+
+def path_problem(path: str | Path, errors: tuple[int, ...] = PATH_ERRORS) -> str | None:
+    """Why ``path`` cannot even be looked at (one of ``errors``), or None: ``Path.exists``
+    and ``Path.is_file`` raise OSError on a name too long or a loop of links instead of
+    answering."""
     try:
         os.stat(path)
     except FileNotFoundError:
         # a missing folder above hides a name too long below it (ENOENT comes first)
-        if any(len(os.fsencode(part)) > NAME_MAX for part in Path(path).parts):
+        if (errno.ENAMETOOLONG in errors
+                and any(len(os.fsencode(part)) > NAME_MAX for part in Path(path).parts)):
             return os.strerror(errno.ENAMETOOLONG)
         return None
     except OSError as exc:
-        if exc.errno in (errno.ENAMETOOLONG, errno.ENOTDIR, errno.ELOOP, errno.EACCES):
+        if exc.errno in errors:
             return exc.strerror or str(exc)
     except ValueError as exc:                       # an embedded NUL
         return str(exc)
@@ -70,26 +76,40 @@ def is_file(path: str | Path) -> bool:
         return False
 
 
-def read_text(path: str | Path, what: str = "a scene", limit: int = 1_000_000) -> str:
-    """The UTF-8 text of a TOML input file of at most ``limit`` bytes (a byte-order mark
-    is accepted); raise :class:`SceneError` naming the file on anything else: missing, a
-    name the file system refuses, a directory, a FIFO or device (never read: it could
-    block or never end), unreadable, binary, UTF-16 or Latin-1. ``what``: the input's
-    name in the messages ("a scene", "a sweep")."""
+def read_file_bytes(path: str | Path, what: str, limit: int) -> bytes:
+    """The bytes of a regular file of at most ``limit`` bytes; :class:`SceneError` naming
+    the file otherwise: missing, a name the file system refuses, a directory, a FIFO or
+    device (never opened: it could block or never end), unreadable, too large. ``what``:
+    the input's name in the messages ("a scene file", "a MoorDyn input file"). Shared by
+    every reader of an input file (scenes, sweeps, MoorDyn decks)."""
     path = Path(path)
     where = str(path)
     problem = path_problem(path)
     if problem is not None:
         raise SceneError(where, "", f"cannot read file ({problem})")
     try:
-        if path.is_dir():
-            raise SceneError(where, "", f"is a directory, not {what} file (a .toml file)")
-        if path.exists() and not path.is_file():
-            raise SceneError(where, "", f"is not a regular file ({what} is a .toml file)")
+        st = path.stat()
+        if stat.S_ISDIR(st.st_mode):
+            raise SceneError(where, "", f"is a directory, not {what}")
+        if not stat.S_ISREG(st.st_mode):
+            raise SceneError(where, "", f"is not a regular file (a pipe or a device), not "
+                             f"{what}")
         with path.open("rb") as fh:
             data = fh.read(limit + 1)
     except OSError as exc:
         raise SceneError(where, "", f"cannot read file ({exc.strerror or exc})") from None
+    if len(data) > limit:
+        raise SceneError(where, "", f"is larger than {limit / 1e6:g} MB, too large for {what}")
+    return data
+
+
+def read_text(path: str | Path, what: str = "a scene", limit: int = 1_000_000) -> str:
+    """The UTF-8 text of a TOML input file of at most ``limit`` bytes (a byte-order mark
+    is accepted; :func:`read_file_bytes` for what is not a file); :class:`SceneError`
+    naming the file on binary, UTF-16 or Latin-1 content. ``what``: the input's name in
+    the messages ("a scene", "a sweep")."""
+    where = str(path)
+    data = read_file_bytes(path, f"{what} file (a .toml file)", limit)
     kinds = {b"\x89PNG": "a PNG image", b"PK\x03\x04": "a zip archive", b"%PDF": "a PDF file",
              b"\x1f\x8b": "a gzip archive", b"\x7fELF": "an executable", b"\xff\xd8\xff":
              "a JPEG image", b"\xff\xfe\x00\x00": "UTF-32 text", b"\x00\x00\xfe\xff":
@@ -100,9 +120,6 @@ def read_text(path: str | Path, what: str = "a scene", limit: int = 1_000_000) -
     if kind is not None:
         raise SceneError(where, "", f"is {kind}, not {what}: {what} is TOML text in UTF-8"
                          + (" (save it as UTF-8)" if "text" in kind else ""))
-    if len(data) > limit:
-        raise SceneError(where, "", f"is larger than {limit // 1_000_000} MB, too large for "
-                         f"{what} file (TOML text of a few kB)")
     try:
         return data.decode("utf-8-sig")
     except UnicodeDecodeError as exc:

@@ -58,7 +58,7 @@ def summary_lines(sm: dict, dynamic: bool = False) -> list[str]:
     """The console lines of a static summary (``summary.json``'s keys, SI): forces in mN,
     N, kN or MN and moments in mN m to MN m as their size asks, with at least 3
     significant digits (a lab model's 1.12 N is not ``0.00 kN``)."""
-    from verification.comparison.formatting import length, with_unit
+    from verification.report.units import length, with_unit
     lines = [f"  hang-off tension {with_unit(sm['hang_off_tension'], 'N')}, angle "
              f"{sm['hang_off_angle_deg']:.3f} deg, at x = {length(sm['hang_off_x'])} m, "
              f"y = {length(sm['hang_off_height'])} m"]

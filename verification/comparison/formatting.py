@@ -1,8 +1,7 @@
 """How the values and differences of agreement rows print in a comparison's report: a
 difference below round-off of its basis prints as 0, a relative difference as a signed
-percentage of the row's basis. And how a force, a moment or a length prints on the
-console (:func:`with_unit`, :func:`length`): with the prefix that keeps its significant
-digits, from a lab model's newtons to a riser's meganewtons."""
+percentage of the row's basis. (Console forces, moments and lengths:
+:mod:`verification.report.units`.)"""
 
 from __future__ import annotations
 
@@ -11,7 +10,6 @@ import math
 import numpy as np
 
 from verification.report.markdown import fmt
-from verification.report.units import length, with_unit  # noqa: F401  (the console's)
 
 #: differences (and values) below this fraction of their basis are printed as 0: the
 #: solvers write their profiles with 10 significant digits, so nothing below ~1e-9 of a

@@ -117,10 +117,10 @@ def clear(folder: str | Path | None, names: tuple[str, ...]) -> list[Path]:
     if folder is None:
         return []
     base = Path(folder)
-    problem = path_problem(base)
     # a name too long or a loop of links: Path.exists would raise OSError (a file above
     # the folder is said below, with the file named)
-    if problem is not None and problem != os.strerror(errno.ENOTDIR):
+    problem = path_problem(base, (errno.ENAMETOOLONG, errno.ELOOP))
+    if problem is not None:
         raise SceneError(str(base), "--out", f"cannot be used: {problem}")
     if not base.exists():
         # it is created later: the nearest existing folder above it must be a folder

@@ -27,13 +27,24 @@ seabed at Z = -WtrDpth; SI units (m, kg, N, s).
 from __future__ import annotations
 
 import re
-import stat
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from ...errors import one_line
+from ..scene_file import read_file_bytes
 from .tokens import (  # noqa: F401 - the format's names, importable from here too
-    C_OPTIONS, CANONICAL, OPTION_KEYS, ORDER, SECTIONS, TEXT_OPTIONS, DeckError,
-    comma_message, is_comma_number, is_number, number)
+    C_OPTIONS,
+    CANONICAL,
+    OPTION_KEYS,
+    ORDER,
+    SECTIONS,
+    TEXT_OPTIONS,
+    DeckError,
+    comma_message,
+    is_comma_number,
+    is_number,
+    number,
+)
 
 #: the columns of a v2 line type after its name (10 to 13 columns with the name; MoorDyn
 #: reads them by position, whatever the header says)
@@ -162,23 +173,12 @@ def read_deck(path: str | Path) -> Deck:
 
 
 def read_text(path: str | Path, what: str, limit: int = 5_000_000) -> tuple[str, str]:
-    """(the text of a regular file of at most ``limit`` bytes, the file's name as messages
-    print it: control characters written \\xNN); a one-line DeckError otherwise (a
-    folder, a pipe or device, which is never opened, binary data)."""
-    path = Path(path)
-    where = "".join(c if c.isprintable() else f"\\x{ord(c):02x}" for c in str(path))
-    try:
-        st = path.stat()
-        if stat.S_ISDIR(st.st_mode):
-            raise DeckError(where, 0, f"is a directory, not {what}")
-        if not stat.S_ISREG(st.st_mode):
-            raise DeckError(where, 0, f"is not a regular file (a pipe or a device), not {what}")
-        with path.open("rb") as f:
-            data = f.read(limit + 1)
-    except OSError as exc:
-        raise DeckError(where, 0, f"cannot read file ({exc.strerror or exc})") from None
-    if len(data) > limit:
-        raise DeckError(where, 0, f"is larger than {limit / 1e6:g} MB, too large for {what}")
+    """(the text of a regular file of at most ``limit`` bytes, UTF-8 or else Latin-1, the
+    file's name as messages print it: control characters escaped); a one-line error
+    otherwise (:func:`riser.io.scene_file.read_file_bytes`: a folder, a pipe or device,
+    which is never opened, a file too large; here also binary data)."""
+    where = one_line(str(path))
+    data = read_file_bytes(path, what, limit)
     if b"\x00" in data:
         raise DeckError(where, 0, f"is binary data (it holds NUL bytes), not {what} (plain "
                         "text)")
