@@ -986,6 +986,15 @@ def test_comma_decimal_is_refused_as_such(edit, pattern, what, tmp_path, capsys)
         assert "MoorDyn-C would take 2" in err and "it is 2.2756436147313323e9" in err
 
 
+@pytest.mark.parametrize("token", ["1e999", "-1e999", "inf", "nan"])
+def test_point_coordinate_that_is_not_finite_is_refused(token, tmp_path, capsys):
+    """A point at 1e999 (infinite to both C's atof and Python) is no position: refused with
+    the point and column named, not carried into the scene (found by the deck fuzzer, which
+    ended in 'cannot write inf to a scene file')."""
+    _refused(GOOD.replace("2  Fixed  1500", f"2  Fixed  {token}"), tmp_path, capsys,
+             r"^2  Fixed", "point 2: X: must be finite")
+
+
 def test_misspelt_physics_option_is_refused(tmp_path, capsys):
     """'WaterDepth' is no option of MoorDyn-C (it would go on without it, taking the depth
     of the deepest point): close to WtrDpth, refused as a misspelling."""

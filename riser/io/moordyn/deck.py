@@ -367,7 +367,7 @@ def _row_point(deck: Deck, tok: list[str], no: int) -> None:
     for c, t in zip("XYZ", tok[2:5]):
         if is_comma_number(t):
             raise DeckError(src, no, comma_message(f"point {pid}: {c}", t))
-        xyz.append(float(t) if is_number(t) else None)
+        xyz.append(number(src, no, f"point {pid}: {c}", t) if is_number(t) else None)
     cols = POINT_COLUMNS_12 if len(tok) >= 12 else POINT_COLUMNS
     v = {c: number(src, no, f"point {pid}: {c}", t) for c, t in zip(cols[3:], tok[5:])}
     deck.points.append(DeckPoint(pid, tok[1], *xyz, v["Mass"], v["Volume"], v["CdA"], v["Ca"],
