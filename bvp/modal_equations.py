@@ -5,7 +5,9 @@ docstring of :mod:`bvp.modes`).
 The line is cut into *pieces*: the scene's segments, split where the static line enters
 or leaves the seabed, so that every coefficient is smooth on a piece and jumps only at
 its ends. On a piece the static state (theta, T, kappa = M/EI, F, y) is a cubic spline in
-s of the converged profile; the perturbation obeys y' = (A(s) + omega^2 B(s)) y.
+s of the converged profile; the perturbation obeys y' = (A(s) + omega^2 B(s)) y. The
+weight and the seabed reaction are in A; the static drag of a current is, as a dead load,
+when the pieces are built with ``dead_drag`` (:func:`build_pieces`).
 
 Families (``FAMILIES``): ``in_plane`` with the state [dx, dy, dtheta, dM, dF, dT] and
 ``out_of_plane`` with the state [w, psi, B, Q] (z displacement, z component of the unit
@@ -24,7 +26,8 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.linalg import LinearOperator, eigs, splu
 
 from riser.profile import Profile
-from riser.scene import Scene
+from riser.errors import UnsupportedSceneError
+from riser.scene import FixedEnds, Scene
 from riser.sections import segment_properties
 
 
@@ -33,7 +36,10 @@ class Piece:
     """One smooth stretch of line [s0, s1] [m]: section values (EI [N m2], 1/EA [1/N],
     mass m and normal added mass ma [kg/m], submerged weight w [N/m]), the seabed law of
     the static solve (``k`` [N/m2]) and whether the static line lies in it (``contact``:
-    the linearised spring k acts on dy), and the splines of the static state."""
+    the linearised spring k acts on dy), the splines of the static state, and the static
+    drag: the coefficients ``c_n`` = 0.5 rho D C_Dn and ``c_t`` = 0.5 rho pi D C_Dt
+    [kg/m2] and ``speed`` (the signed in-plane current along +x [m/s] at height y; None:
+    no current), as in ``bvp/equations.py``."""
 
     s0: float
     s1: float
@@ -45,6 +51,9 @@ class Piece:
     k: float
     contact: bool
     spl: dict = field(repr=False, default_factory=dict)
+    c_n: float = 0.0
+    c_t: float = 0.0
+    speed: object = field(repr=False, default=None)
 
     @property
     def length(self) -> float:
@@ -52,9 +61,18 @@ class Piece:
 
     def static(self, s: np.ndarray) -> dict:
         """Static state at arc lengths ``s``: theta, T, kappa, F, y, the seabed reaction p
-        [N/m] and the linearised spring kc [N/m2] (k in contact, else 0)."""
+        [N/m], the linearised spring kc [N/m2] (k in contact, else 0) and the static drag
+        per unstretched length f_n along n and f_t along t [N/m] (``bvp/equations.py``:
+        f_n = c_n |V_n| V_n, V_n = -V sin theta; f_t = c_t |V_t| V_t, V_t = V cos theta)."""
         out = {key: f(s) for key, f in self.spl.items()}
         y = out["y"]
+        if self.speed is None:
+            out["f_n"] = out["f_t"] = np.zeros_like(y)
+        else:
+            V = self.speed(y)
+            vn, vt = -V * np.sin(out["theta"]), V * np.cos(out["theta"])
+            out["f_n"] = self.c_n * np.abs(vn) * vn
+            out["f_t"] = self.c_t * np.abs(vt) * vt
         if self.contact:
             out["p"] = -self.k * y
         else:
@@ -98,11 +116,13 @@ class Family:
             A[dM, dT] = F * pc.inv_EA
             A[dF, dT] = kap
             A[dF, dM] = T / pc.EI
-            A[dF, dth] = (pc.w - st["p"]) * sn
+            # the dead loads turn with the frame: d(q.n) = -(q.t) dtheta, d(q.t) = (q.n)
+            # dtheta, q = (0, p - w) + f_n n + f_t t (the drag frozen at its static value)
+            A[dF, dth] = (pc.w - st["p"]) * sn - st["f_t"]
             A[dF, dy] = -st["kc"] * c
             A[dT, dF] = -kap
             A[dT, dM] = -F / pc.EI
-            A[dT, dth] = (pc.w - st["p"]) * c
+            A[dT, dth] = (pc.w - st["p"]) * c - st["f_n"]
             A[dT, dy] = st["kc"] * sn
             B[dF, dx] = -mn * sn
             B[dF, dy] = mn * c
@@ -149,18 +169,54 @@ FAMILIES = {
 }
 
 
+def require_linearisable(scene: Scene, who: str) -> None:
+    """Refuse, before solving, a scene whose static state cannot be linearised here:
+    ends that are not fixed, an out-of-plane current (a 3D static state), a rigid seabed
+    (no linear stiffness). ``who`` names the analysis in the message ('bvp modes', 'the
+    frequency domain')."""
+    src = scene.source
+    if not isinstance(scene.ends, FixedEnds):
+        raise UnsupportedSceneError(
+            f"{src}: ends: {who} need(s) fixed ends (anchor + hang_off), the scene gives the "
+            f"'{scene.ends.kind}' form (convert it with "
+            "verification.pipeline.vfife_equivalent)")
+    if scene.current is not None and not scene.current.is_planar:
+        raise UnsupportedSceneError(
+            f"{src}: environment.current.heading_deg: {scene.current.heading_deg:g} deg is "
+            f"out of plane: the static state is not planar, {who} linearise(s) about a "
+            "planar one")
+    if scene.seabed_model == "rigid":
+        raise UnsupportedSceneError(
+            f"{src}: model.seabed: 'rigid' has no linear stiffness (a touchdown point); "
+            f"{who} need(s) the elastic seabed")
+
+
 # ------------------------------------------------------------------ static line -> pieces
 def _signed(magnitude: np.ndarray, of: np.ndarray, s: np.ndarray) -> np.ndarray:
     """``magnitude`` signed with the slope of ``of`` along s (a cubic spline's derivative)."""
     return magnitude * np.sign(CubicSpline(s, of)(s, 1))
 
 
-def build_pieces(scene: Scene, profile: Profile) -> list[Piece]:
+def build_pieces(scene: Scene, profile: Profile, dead_drag: bool = False) -> list[Piece]:
     """The pieces of the static ``profile`` of ``scene`` (see the module docstring).
 
     Moment and shear are magnitudes in a profile: the moment takes the sign of dtheta/ds,
-    the shear that of dM/ds (M' = (1 + eps) F)."""
+    the shear that of dM/ds (M' = (1 + eps) F).
+
+    ``dead_drag``: the pieces carry the static drag of the scene's in-plane current, and
+    :meth:`Family.matrices` holds it as a dead load (fixed in direction: the terms
+    -f_t dtheta in dF' and -f_n dtheta in dT'), the model of :mod:`bvp.modes`. False (the
+    default): the drag's terms are left to the caller, as a linearisation of the drag
+    itself (a Morison increment d(q.n) = df_n already holds the turning of the flow, so
+    the dead-load terms would count it twice)."""
     props = segment_properties(scene)
+    speed = None
+    cur = scene.current
+    if dead_drag and cur is not None and cur.max_abs_speed > 0.0:
+        sign = math.cos(math.radians(cur.heading_deg))           # +1 or -1 (planar)
+
+        def speed(y):
+            return sign * cur.speed(y)
     extensible = scene.axial_model == "extensible"
     k = scene.seabed.stiffness if scene.seabed_model == "elastic" else 0.0
     s_all = profile.s
@@ -187,7 +243,8 @@ def build_pieces(scene: Scene, profile: Profile) -> list[Piece]:
                 and profile.y[0] <= 1e-9
             contact = k > 0.0 and (in_zone or float(spl["y"](mid)) < 0.0)
             pieces.append(Piece(a, b, p.EI, inv_EA, p.mass, p.added_mass, p.weight, k,
-                                contact, spl))
+                                contact, spl, p.drag_normal_coef, p.drag_tangential_coef,
+                                speed))
     return pieces
 
 

@@ -14,12 +14,19 @@ line's motion obeys, per unit unstretched length,
     M = EI t x dt/ds,  |dr/ds| = 1 + eps,  eps = T / EA,  T = P.t
 
 with m the pipe + contents mass and m_a = C_a rho pi D^2/4 the added mass, normal to the
-axis only; q the dead weight (0, -w, 0) plus the seabed reaction (0, p, 0), p = k max(-y,
-0) (``riser.sections``). No torsion: the moment EI t x t' is perpendicular to the axis
-(the VFIFE does not integrate twist). Drag and friction are not in an undamped analysis.
-Small harmonic motion e^{i omega t} about the static state, linearised: the weight is a
-dead load (no linear term), the seabed a vertical spring k per unit length where the
-static line lies in it (dp = -k dy), nothing laterally.
+axis only; q the dead weight (0, -w, 0), the seabed reaction (0, p, 0), p = k max(-y, 0)
+(``riser.sections``), and the static drag of an in-plane current frozen as a dead load:
+q_d = f_n n0 + f_t t0 with f_n = c_n |V_n| V_n, V_n = -V sin theta0, f_t = c_t |V_t| V_t,
+V_t = V cos theta0 (``bvp/equations.py``) at the static tangent and height of each
+material point, fixed in magnitude and direction while the line moves (the VFIFE's
+constant nodal forces). No torsion: the moment EI t x t' is perpendicular to the axis
+(the VFIFE does not integrate twist). Undamped: the drag's dependence on the line's
+velocity (damping) and on its direction and height (a quasi-steady drag stiffness) is not
+modelled, nor friction. Small harmonic motion e^{i omega t} about the static state,
+linearised: weight and drag are dead loads (no linear term in x, y; in the rotating frame
+their components turn, d(q.n) = -(q.t) dtheta and d(q.t) = (q.n) dtheta), the seabed a
+vertical spring k per unit length where the static line lies in it (dp = -k dy), nothing
+laterally.
 
 In plane (t = (c, sn) = (cos theta, sin theta), n = (-sn, c), kappa = M/EI,
 e = 1 + T/EA), state [dx, dy, dtheta, dM, dF, dT] (the linearisation of
@@ -27,10 +34,14 @@ e = 1 + T/EA), state [dx, dy, dtheta, dM, dF, dT] (the linearisation of
 
     dx' = -e sn dtheta + c dT/EA          dy' = e c dtheta + sn dT/EA
     dtheta' = dM/EI                       dM' = e dF + F dT/EA
-    dF' = kappa dT + T dM/EI + (w - p) sn dtheta - k c dy + omega^2 (m + m_a) u_n
-    dT' = -kappa dF - F dM/EI + (w - p) c dtheta + k sn dy - omega^2 m u_t
+    dF' = kappa dT + T dM/EI + ((w - p) sn - f_t) dtheta - k c dy + omega^2 (m + m_a) u_n
+    dT' = -kappa dF - F dM/EI + ((w - p) c - f_n) dtheta + k sn dy - omega^2 m u_t
 
-with u_t = c dx + sn dy and u_n = -sn dx + c dy (k only in contact).
+with u_t = c dx + sn dy and u_n = -sn dx + c dy (k only in contact). The f_n, f_t terms
+are the dead drag's turning components (static F' = T kappa + q.n, T' = -F kappa - q.t
+with q.n = (p - w) c + f_n, q.t = (p - w) sn + f_t). Left out, the drag turns with the
+line (a follower load), not the VFIFE's model: 1.5 % off on a light power cable's first
+in-plane mode in a 1 m/s current, whatever the mesh (``tests/test_modes_current.py``).
 
 Out of plane, state [w, psi, B, Q]: w the z displacement, psi the z component of the unit
 tangent, B the bending moment about the in-plane normal n, Q = dP.z the z shear force.
@@ -42,7 +53,8 @@ rotated with the tangent (dM.t + M0.dt = 0: still no torsion). (3) Linearise the
 balance: dM' + dr' x P0 + r0' x dP = 0 with P0 = T t0 - F n, dr' = e psi z,
 dP = Q z: its t0 component, B kappa - (M0 psi)' + e F psi = 0, holds identically (M0' =
 e F, B kappa = M0 psi'); its n component gives B'. (4) The z force balance:
-Q' = -omega^2 (m + m_a) w (no lateral seabed, the weight has no z part). Hence
+Q' = -omega^2 (m + m_a) w (no lateral seabed; the weight and the in-plane drag have no z
+part, and a dead load does not tilt with the line: no drag term out of plane). Hence
 
     w' = e psi,   psi' = B/EI,   B' = e (T psi - Q) - EI kappa^2 psi,
     Q' = -omega^2 (m + m_a) w,
@@ -87,10 +99,11 @@ from riser.callbacks import with_fraction
 from riser.errors import UnsupportedSceneError
 from riser.modes import PLANES, ModalResult, Mode, mac, normalise_shape, shape_at
 from riser.result import SolveResult, Status
-from riser.scene import FixedEnds, Scene
+from riser.scene import Scene
 
 from .mesh import clustered_mesh
-from .modal_equations import FAMILIES, Family, Piece, box_modes, build_pieces
+from .modal_equations import (FAMILIES, Family, Piece, box_modes, build_pieces,
+                              require_linearisable)
 
 #: a refined mode must keep MAC >= this with its box-scheme guess ...
 MIN_MAC_WITH_GUESS = 0.9
@@ -138,7 +151,7 @@ def solve_modes(scene: Scene, count: int = 10, *, static: SolveResult | None = N
     if not static.converged:
         return result(static.status, f"the static solution did not converge: "
                       f"{static.message}")
-    pieces = build_pieces(scene, static.profile)
+    pieces = build_pieces(scene, static.profile, dead_drag=True)
     info["pieces"] = [(round(p.s0, 6), round(p.s1, 6), bool(p.contact)) for p in pieces]
     clamped = tuple(scene.vfife.clamped_ends)
     modes, failures, checks = [], [], []
@@ -184,19 +197,7 @@ def solve_modes(scene: Scene, count: int = 10, *, static: SolveResult | None = N
 
 def _require_modal(scene: Scene) -> None:
     """Refuse what the linearisation does not represent (before solving)."""
-    if not isinstance(scene.ends, FixedEnds):
-        raise UnsupportedSceneError(
-            f"{scene.source}: ends: bvp modes need fixed ends (anchor + hang_off), the scene "
-            f"gives the '{scene.ends.kind}' form (convert it with "
-            "verification.pipeline.vfife_equivalent)")
-    if scene.current is not None and not scene.current.is_planar:
-        raise UnsupportedSceneError(
-            f"{scene.source}: environment.current.heading_deg: {scene.current.heading_deg:g} "
-            "deg is out of plane: the static state is not planar, bvp modes need a planar one")
-    if scene.seabed_model == "rigid":
-        raise UnsupportedSceneError(
-            f"{scene.source}: model.seabed: 'rigid' has no linear stiffness (a touchdown "
-            "point); bvp modes need the elastic seabed")
+    require_linearisable(scene, "bvp modes")
     if scene.internal_flow is not None and scene.internal_flow.speed != 0.0:
         raise UnsupportedSceneError(
             f"{scene.source}: internal_flow.speed: modes do not model flowing contents (the "

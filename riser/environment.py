@@ -84,11 +84,13 @@ class Current(Part):
 @dataclass(frozen=True)
 class Seabed(Part):
     """Flat seabed at y = 0: penalty stiffness [N/m per m of line = N/m2], Coulomb friction,
-    damping as a fraction of critical for the contact spring (VFIFE only)."""
+    damping as a fraction of critical for the contact spring (the dynamic methods: the
+    VFIFE and the frequency domain, each applying at most critical)."""
 
     stiffness: float = spec(gt=0.0, le=1.0e12, unit="N/m2",
                             doc="penalty stiffness per metre of line per metre of "
                                 "penetration")
     friction: float = spec(0.0, ge=0.0, le=5.0, doc="Coulomb friction coefficient")
     damping: float = spec(0.0, ge=0.0, le=10.0,
-                          doc="contact damping, fraction of critical (VFIFE)")
+                          doc="contact damping, fraction of critical (dynamics; "
+                              "applied up to 1)")

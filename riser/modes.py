@@ -4,8 +4,9 @@ Each method computes the natural modes of small vibration about *its own* static
 equilibrium of the same scene, with the same mass per length (pipe + contents, and the
 added mass ``C_a rho pi D^2/4`` normal to the axis only), the same tension, bending
 stiffness and seabed contact (the elastic seabed linearised: a vertical spring of the
-scene's stiffness [N/m2] under the grounded part, nothing laterally; friction and drag are
-not in an undamped modal analysis). Only planar static states are analysed: the in-plane
+scene's stiffness [N/m2] under the grounded part, nothing laterally; the static drag of a
+current held as a dead load (its static value, fixed in direction); no drag damping or
+friction). Only planar static states are analysed: the in-plane
 (x, y) and out-of-plane (z) motions then decouple and each family is numbered from its
 lowest frequency.
 

@@ -103,7 +103,8 @@ class DynamicsResult:
     envelope : column -> (n,) array along the line (``s`` [m]; extremes over the
         statistics window).
     states : ``t`` (k,), ``s`` (n,), ``x`` (k, n, 3) [m], ``v`` (k, n, 3) [m/s],
-        ``tension`` (k, n) [N], ``moment`` (k, n) [N m]; None unless
+        ``tension`` (k, n) [N], ``moment`` (k, n) [N m], ``moment_vector`` (k, n, 3)
+        [N m] (global components); None unless
         ``[dynamics] save_states``.
     """
 

@@ -14,17 +14,20 @@ import pandas as pd
 import pytest
 
 from verification.catalog import resolve
+from verification.comparison import dynamics_report
 from verification.report.markdown import fmt
 from verification.runtime import outdir
 from verification.studies import STUDIES, study
+from verification.studies import dynamics as dyn_study
 
 REPORTS = Path(__file__).resolve().parents[1] / "reports"
 #: the studies with one folder per unit (scene) under reports/NAME/
-PER_UNIT = {"compare", "cost", "modes"}
+PER_UNIT = {"compare", "cost", "modes", "dynamics"}
 #: the verdicts a study's index row may give; pass/fail studies must pass on the committed
 #: reports (the suite's claims), the reproductions of incomplete papers only report
 VERDICTS = {
     "wang2014": {"pass"}, "compare": {"pass"}, "stress": {"pass"}, "modes": {"pass"},
+    "dynamics": {"pass"},
     "kang2015": {"paper trends reproduced (its tables lost)"},
     "yu2021": {"reported (paper inputs incomplete)"},
     "liu2021": {"reported (paper inputs incomplete)"},
@@ -48,18 +51,23 @@ def expected_files(name: str, folder: Path) -> set[str]:
     without the files that do not apply to its scene (a dynamic run's, the analytic
     column's when it did not run: no value in agreement.csv's ``analytic_rel_diff``)."""
     names = set(outdir.STUDY_FILES[name])
-    if name != "compare":
+    if name == "dynamics":          # the static comparison, then a folder per case
+        names |= {f"{case}/{f}" for case, *_ in dyn_study.cases(folder.name)
+                  for f in dynamics_report.FILES}
+        if folder.name not in dyn_study.SWEEP_SCENES:
+            names.discard("convergence.csv")
+    elif name != "compare":
         return names
     df = pd.read_csv(folder / "agreement.csv")
     analytic = "analytic_rel_diff" in df and bool(df["analytic_rel_diff"].notna().any())
-    dynamic = resolve(folder.name).dynamics is not None
+    dynamic = name == "compare" and resolve(folder.name).dynamics is not None
     return {f for f in names
             if (dynamic or Path(f).name not in DYNAMIC)
             and (analytic or not f.startswith("analytic/"))}
 
 
 def test_the_registry_lists_every_study_once():
-    assert len(STUDIES) == len(set(STUDIES)) == 8
+    assert len(STUDIES) == len(set(STUDIES)) == 9
     assert set(VERDICTS) == set(STUDIES) == set(outdir.STUDY_FILES)
 
 

@@ -17,7 +17,9 @@ Time series (one row per output time; SI units, s from the bottom end):
 Envelopes (one row per node): s [m], tension_min, tension_max [N], moment_max [N m],
 curvature_max [1/m], y_min, y_max [m] (height extremes: seabed and surface clearance).
 States (``[dynamics] save_states``): t (k,), s (n,), x (k, n, 3) [m], v (k, n, 3) [m/s],
-tension (k, n) [N] (effective) and moment (k, n) [N m] at the nodes.
+tension (k, n) [N] (effective) and moment (k, n) [N m] at the nodes, and moment_vector
+(k, n, 3) [N m] (the nodal moment's global x, y, z components: the signed in-plane
+bending of a planar line is its z component).
 """
 
 from __future__ import annotations
@@ -75,7 +77,8 @@ class Recorder:
         self.env = {"tension_min": np.full(n, np.inf), "tension_max": np.full(n, -np.inf),
                     "moment_max": np.full(n, -np.inf), "curvature_max": np.full(n, -np.inf),
                     "y_min": np.full(n, np.inf), "y_max": np.full(n, -np.inf)}
-        self.states = {"t": [], "x": [], "v": [], "tension": [], "moment": []}
+        self.states = {"t": [], "x": [], "v": [], "tension": [], "moment": [],
+                       "moment_vector": []}
         self.stats: dict = {}
         self.samples = 0
 
@@ -105,6 +108,7 @@ class Recorder:
                 self.states["v"].append(model.V.T.copy())
                 self.states["tension"].append(T.copy())
                 self.states["moment"].append(M.copy())
+                self.states["moment_vector"].append(r["moment_vector"].T.copy())
 
     def _window(self, row: dict, T, M, K, y) -> None:
         e = self.env
@@ -141,7 +145,8 @@ class Recorder:
         if not self.save_states:
             return None
         return {"t": np.asarray(self.states["t"]), "s": self.s.copy(),
-                **{k: np.asarray(self.states[k]) for k in ("x", "v", "tension", "moment")}}
+                **{k: np.asarray(self.states[k]) for k in ("x", "v", "tension", "moment",
+                                                           "moment_vector")}}
 
     def statistics(self, end: float) -> dict:
         """The extremes of the window from the start to ``end`` [s] (``dynamic_*`` keys of

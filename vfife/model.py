@@ -237,8 +237,10 @@ class Model:
         return self._recovery
 
     def nodal_results(self) -> dict:
-        """Tension [N], moment [N m], shear [N] and curvature [1/m] at the nodes, and the
-        element tensions (``element_tension``, (ne,)).
+        """Tension [N], moment [N m], shear [N] and curvature [1/m] at the nodes, the
+        moment vector (``moment_vector``, (3, n) [N m], global x, y, z; the in-plane bending
+        of a planar line is its z component) and the element tensions
+        (``element_tension``, (ne,)).
 
         Second order at every node (:mod:`vfife.recovery`): the element tension and shear
         vector belong to the element midpoint and are interpolated to an ordinary node,
@@ -263,7 +265,7 @@ class Model:
         EI_n[1:] = np.minimum(EI_n[1:], self.mesh.EI)
         shear = np.linalg.norm(rec.vectors(S), axis=0)
         return {"tension": rec.scalar(N), "moment": mom, "shear": shear,
-                "curvature": mom / EI_n, "element_tension": N}
+                "curvature": mom / EI_n, "element_tension": N, "moment_vector": M}
 
     def energy(self) -> dict:
         """Kinetic, strain and gravity energies [J] of the current state (numpy, for tests)."""

@@ -6,7 +6,9 @@ against the model's own time integration.
 kernel's element forces, the seabed springs at the nodes in contact, the lumped mass
 pipe + contents, the added mass normal to the director) and solves ``K phi = omega^2 M
 phi`` for the lowest modes with ``scipy.sparse.linalg.eigsh`` (shift-invert about 0).
-Undamped: no drag, friction or contact damping.
+Undamped: the static drag of a current is held as a dead load (its static nodal forces,
+fixed: no stiffness, the model of :mod:`bvp.modes`); no drag damping, friction or contact
+damping.
 
 Rotational inertia: the physical diametral inertia of the pipe wall (``rot_scale`` 1),
 kept as a DOF mass rather than condensed: it is what the continuum (Rayleigh) beam has,
@@ -216,7 +218,14 @@ def free_vibration(scene, plane: str = "in_plane", number: int = 1, *, static=No
     rot_scale : rotational inertia factor of the time-domain model (default the scene's
         ``rotational_inertia_scale_dynamics``; the eigen-solution is computed with the same).
     Returns frequency_hz (measured), modal_frequency_hz, rel_diff, time_step, steps, wall_s.
+    A scene with a current raises ValueError: released without its drag (the time-domain
+    model cannot hold the drag as the modes' dead load) the static state is not an
+    equilibrium, and the line would drift, not vibrate about it.
     """
+    if scene.current is not None and scene.current.max_abs_speed > 0.0:
+        raise ValueError(f"{scene.name}: free vibration: the scene has a current, whose "
+                         "static drag the released model (no drag) does not carry; the "
+                         "check applies without current")
     res, _ = static_state(scene, static)
     if not res.converged:
         raise ValueError(f"{scene.name}: no static state: {res.message}")

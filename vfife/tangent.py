@@ -16,10 +16,12 @@ perturbed one at a time in all elements at once (40 calls in all, see :data:`STE
 element forces are the exact gradient of the element energy and the moments are the
 generalised forces of rotations perpendicular to the director, so the result is the
 energy's Hessian in these coordinates: symmetric at any state (the mixed term of two
-rotations is along the director, where the moment has no component). Weight is a constant
-force (no stiffness); the seabed adds its linear spring ``k x tributary length`` [N/m] in
-y at the nodes in contact (y < 0); friction, drag and damping are not in an undamped
-linearisation.
+rotations is along the director, where the moment has no component). Weight and the
+static drag of a current are constant nodal forces, dead loads (no stiffness: the drag is
+frozen at its static value, the model stated in :mod:`bvp.modes`, whose rotating-frame
+equations carry the matching terms); the seabed adds its linear spring ``k x tributary
+length`` [N/m] in y at the nodes in contact (y < 0); friction, the drag's dependence on
+the motion and damping are not in this undamped linearisation.
 
 Mass: per node ``m I + m_a (I - d d^T)`` (pipe + contents, the added mass normal to the
 director, exactly as the kernels integrate it) and the rotational inertia ``J`` on both
@@ -77,8 +79,9 @@ def dynamic_model(scene, static: Model, rot_scale: float = 1.0, planar: bool | N
     """A Model with the physical masses built the way :func:`vfife.dynamics.run_dynamics`
     builds it (added mass if a line type has C_a > 0, the rotational inertia ``rot_scale``
     x physical), holding the static state of ``static`` (positions, directors; at rest).
-    Without the drag and the sea surface of the dynamics: an undamped linearisation has
-    no drag, and the added mass is the contract's (:mod:`riser.modes`) all along the line."""
+    Without the drag and the sea surface of the dynamics: the static drag enters the
+    linearisation as a dead load, which has no stiffness (nothing to build), and the
+    added mass is the contract's (:mod:`riser.modes`) all along the line."""
     added = any(scene.line_types[s.line_type].added_mass > 0.0 for s in scene.segments)
     model = Model(scene, static.mesh, rot_scale=rot_scale, added_mass=added,
                   planar=static.planar if planar is None else planar)

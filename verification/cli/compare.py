@@ -15,6 +15,8 @@ from .common import (ELEMENT_LENGTH, Range, add_ranged, check_overrides, check_r
 MAX_MODES = 50
 #: --count of ``modes``
 COUNT = Range(1, MAX_MODES, integer=True, what="modes per plane")
+#: each of --amplitudes [m]
+AMPLITUDE = Range(0.0, 100.0, lo_open=True, unit="m", what="hang-off motion amplitude")
 #: --peer-segment-length of ``compare`` (the peer checks it against the line too: at most
 #: a tenth of it)
 PEER_SEGMENT_LENGTH = Range(0.01, 1000.0, unit="m",
@@ -22,6 +24,12 @@ PEER_SEGMENT_LENGTH = Range(0.01, 1000.0, unit="m",
 
 
 def cmd_compare(args) -> int:
+    if args.dynamics:
+        return cmd_compare_dynamics(args)
+    if args.amplitudes:
+        from riser.errors import SceneError
+        raise SceneError("command line", "--amplitudes", "only with --dynamics (the "
+                         "amplitude sweep of the dynamic comparison)")
     from verification.comparison.protocol import compare, default_columns
     from verification.comparison.report import write
     files = outdir.COMPARE + tuple(f for name in peers.names() for f in peers.peer(name).files)
@@ -54,6 +62,58 @@ def cmd_compare(args) -> int:
     return 0 if comp.passed and not warned and comp.columns_ok else 1
 
 
+def parse_amplitudes(text: str | None) -> list[float] | None:
+    """--amplitudes 'A,B,...' [m]: each > 0 and <= 100 m (a vessel's motion), at most 12."""
+    from riser.errors import SceneError
+    if not text:
+        return None
+    try:
+        out = [float(a) for a in text.split(",")]
+    except ValueError:
+        raise SceneError("command line", "--amplitudes", f"{text!r} must be numbers in "
+                         "metres separated by commas, e.g. 0.1,0.3,1,3") from None
+    bad = [a for a in out if not (0.0 < a <= AMPLITUDE.hi)]
+    if bad or not 1 <= len(out) <= 12:
+        raise SceneError("command line", "--amplitudes", f"{text!r}: 1 to 12 amplitudes, "
+                         f"each > 0 m and <= {AMPLITUDE.hi:g} m")
+    return sorted(set(out))
+
+
+def cmd_compare_dynamics(args) -> int:
+    """``compare SCENE --dynamics``: the static comparison, then the scene's harmonic
+    motion by the frequency domain and the VFIFE (verification.comparison.dynamics)."""
+    from verification.comparison import dynamics_report
+    from verification.comparison.dynamics import compare_dynamics, motion_of
+    from verification.comparison.protocol import compare, default_columns
+    from verification.comparison.report import report_markdown, write
+    files = outdir.COMPARE + dynamics_report.FILES
+    outdir.clear(args.out, files)
+    check_ranges(args)
+    amplitudes = parse_amplitudes(args.amplitudes)
+    scene = resolve(args.scene)
+    motion_of(scene)                          # a harmonic [dynamics.top_motion], or exit 2
+    out = out_folder(args, Path("out") / scene.name / "compare-dynamics", files)
+    check_overrides(scene, args)
+    if args.peer:
+        peers.peer(args.peer).require()
+    with progress_for(args, f"compare {scene.name} --dynamics") as prog:
+        comp = compare(scene, element_length=args.element_length, columns=default_columns(),
+                       folder=out, paper_model=False, progress=prog)
+        dc = compare_dynamics(scene, amplitudes=amplitudes, element_length=args.element_length,
+                              static=comp.bvp, progress=prog)
+        write(comp, out)
+        peer_md, peer_lines = "", []
+        if args.peer and peers.peer(args.peer).dynamic is not None:
+            peer_md, peer_lines = peers.peer(args.peer).dynamic(dc, out, prog)
+        dynamics_report.write(dc, out, report_markdown(comp, heading="##") + peer_md)
+    print(f"{scene.name}: static comparison {'PASS' if comp.passed else 'FAIL'}")
+    for line in dynamics_report.console_lines(dc) + peer_lines:
+        print(line)
+    print(f"{scene.name} dynamics: {'PASS' if dc.passed else 'FAIL'}; wrote "
+          f"{out}/dynamic_agreement.csv, report.md")
+    return 0 if comp.passed and dc.passed else 1
+
+
 def cmd_modes(args) -> int:
     from verification.comparison import modes
     outdir.clear(args.out, modes.FILES)
@@ -83,6 +143,13 @@ def add_parsers(sub) -> None:
                    "pip install -e '.[NAME]')")
     add_ranged(s, "--peer-segment-length", PEER_SEGMENT_LENGTH, default=10.0, metavar="H",
                help="the peer's segment length [m] (default 10)")
+    s.add_argument("--dynamics", action="store_true",
+                   help="also compare the response to the scene's harmonic "
+                        "[dynamics.top_motion]: frequency domain about the BVP static state "
+                        "against the VFIFE's time domain (out/SCENE/compare-dynamics)")
+    s.add_argument("--amplitudes", metavar="A,B,...",
+                   help="with --dynamics: the amplitude sweep [m] (default the scene's "
+                        "amplitude), e.g. 0.1,0.3,1,3")
     s.set_defaults(func=cmd_compare)
     s = sub.add_parser("modes", help="natural modes about the static state, both methods")
     s.add_argument("scene", help="built-in scene name or path to a .toml scene file")

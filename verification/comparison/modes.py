@@ -5,7 +5,8 @@ Both methods analyse the same fixed-ends scene, :func:`verification.pipeline.
 vfife_equivalent` of the scene (a Wang-form scene is converted; its arc lengths are then
 reported from the BVP touchdown, the converted s minus ``s_shift``), each about its own
 static equilibrium (``bvp.modes.solve_modes``, ``vfife.modes.solve_modes``; the shared
-model is stated in :mod:`riser.modes`). Modes are paired by plane and number; the
+model is stated in :mod:`riser.modes`, its equations in :mod:`bvp.modes`: undamped, the
+static drag of a current frozen as a dead load). Modes are paired by plane and number; the
 agreement of a pair is the relative frequency difference of the VFIFE from the BVP and
 the MAC of the two shapes interpolated on the VFIFE's nodes (inside the arc-length range
 both cover). The target: |difference| <= 0.5 % and MAC >= 0.99.
@@ -203,8 +204,9 @@ def markdown(run: ModesRun) -> str:
     lines = [f"# Natural modes: {run.scene}", "", GENERATED_NOTE, "",
              "Undamped modes of small vibration about the static state, by both methods "
              "(`riser/modes.py`: mass pipe + contents with the added mass normal to the axis, "
-             "the elastic seabed as vertical springs where the line lies on it, no drag or "
-             "friction). Target: |frequency difference| <= "
+             "the elastic seabed as vertical springs where the line lies on it, the static "
+             "drag of a current held as a dead load, fixed in magnitude and direction as the "
+             "line moves; no drag damping or friction). Target: |frequency difference| <= "
              f"{100 * TARGET_REL_DIFF:g} % and MAC >= {TARGET_MAC:g}; difference = "
              "VFIFE / BVP - 1; MAC of the two shapes on the VFIFE nodes.", ""]
     if run.note:

@@ -32,6 +32,9 @@ class Peer:
     bench : ``bench(scene, log)`` -> the record of ``bench --peer`` on ``scene``;
         ``bench_lines(record)`` -> its console lines; written to ``bench_file``.
     add_commands : ``add_commands(subparsers)`` adds its own commands (None: none).
+    dynamic : ``dynamic(comparison, folder, progress)`` -> (the Markdown section, the
+        console lines) of its third opinion on a dynamic comparison (``compare --dynamics
+        --peer``; None: it has none).
     """
 
     name: str
@@ -43,6 +46,7 @@ class Peer:
     bench_lines: Callable
     bench_file: str
     add_commands: Callable | None = None
+    dynamic: Callable | None = None
 
 
 def names() -> tuple[str, ...]:

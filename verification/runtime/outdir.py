@@ -62,6 +62,7 @@ STUDY_FILES = {
     "stress": STRESS,
     "cost": COST,
     "modes": MODES,
+    "dynamics": ("cases.csv", "convergence.csv", "report.md") + COMPARE,
 }
 
 

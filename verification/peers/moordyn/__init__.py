@@ -12,7 +12,8 @@ from verification.peers import Peer
 
 #: the files of its column under a comparison's folder (cleared before a run)
 FILES = tuple(f"moordyn/{n}" for n in ("deck.dat", "deck.out", "current_profile.txt",
-                                       "moordyn.log", "agreement.csv", "profile.csv"))
+                                       "moordyn.log", "agreement.csv", "profile.csv",
+                                       "dynamic_agreement.csv"))
 
 def _column(scene, segment_length: float = 10.0):
     from .column import MoorDynColumn
@@ -36,6 +37,11 @@ def _bench_lines(record: dict) -> list[str]:
     return summary_lines(record)
 
 
+def _dynamic(dc, out, progress=None) -> tuple[str, list[str]]:
+    from .dynamic_column import dynamic
+    return dynamic(dc, out, progress)
+
+
 def _add_commands(sub) -> None:
     from .commands import add_parsers
     add_parsers(sub)
@@ -43,4 +49,4 @@ def _add_commands(sub) -> None:
 
 PEER = Peer(name="moordyn", extra="moordyn", require=_require, column=_column,
             files=FILES, bench=_bench, bench_lines=_bench_lines,
-            bench_file="moordyn.json", add_commands=_add_commands)
+            bench_file="moordyn.json", add_commands=_add_commands, dynamic=_dynamic)

@@ -1,0 +1,74 @@
+"""The harmonic response to a harmonic hang-off motion: the contract of a frequency-domain
+solution and of the first harmonic read off a time-domain one.
+
+A harmonic motion of the hang-off, ``d(t) = Re(D e^{i omega t})`` per axis (x, y, z) with
+complex amplitudes D [m] (a motion A sin(omega t) along an axis is D = -i A), drives a
+response whose first harmonic at arc length s is ``q(s, t) = q_0(s) + Re(Q(s) e^{i omega
+t})``: ``Q`` complex, amplitude |Q|, phase arg(Q) [rad] (the same convention as
+:mod:`verification.comparison.harmonics`, which reads it off a time series).
+
+Conventions: SI units; x horizontal towards the hang-off, y up from the seabed, z out of
+plane; s [m] the unstretched arc length from the bottom end. Displacements are those of
+the material points (Lagrangian), tension the effective tension, ``moment`` the in-plane
+bending moment (about z, EI dtheta/ds: positive when the line turns anticlockwise), and
+``moment_out`` the bending moment about the static in-plane normal (the out-of-plane
+bending).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .result import Status
+
+#: the response quantities along s (``HarmonicResponse`` fields, ``response.csv`` columns)
+QUANTITIES = ("dx", "dy", "dz", "tension", "moment", "moment_out", "curvature", "shear")
+#: their units
+UNITS = {"dx": "m", "dy": "m", "dz": "m", "tension": "N", "moment": "N m",
+         "moment_out": "N m", "curvature": "1/m", "shear": "N"}
+
+
+@dataclass
+class HarmonicResponse:
+    """One harmonic response (see the module docstring).
+
+    method : 'bvp' (frequency domain) or the time-domain method read off. status: a
+    :class:`~riser.result.Status`. period [s]; motion (3,) complex amplitudes of the
+    hang-off motion [m] along x, y, z. ``s`` (n,) [m]; ``amplitudes`` maps each name of
+    :data:`QUANTITIES` to a complex (n,) array; ``static`` holds the static tension [N]
+    and in-plane moment [N m] at s. ``info``: figures of the solution (iterations of the
+    drag linearisation, grid change, wall time)."""
+
+    method: str
+    scene: str
+    status: Status
+    message: str
+    period: float = 0.0
+    motion: np.ndarray = field(default_factory=lambda: np.zeros(3, complex))
+    s: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    amplitudes: dict = field(default_factory=dict)
+    static: dict = field(default_factory=dict)
+    wall_time_s: float = 0.0
+    info: dict = field(default_factory=dict)
+
+    @property
+    def converged(self) -> bool:
+        return self.status == Status.CONVERGED
+
+    @property
+    def omega(self) -> float:
+        return 2.0 * np.pi / self.period
+
+    def at(self, name: str, s) -> np.ndarray:
+        """Complex amplitude of ``name`` interpolated (real and imaginary parts) at s."""
+        q = self.amplitudes[name]
+        return np.interp(s, self.s, q.real) + 1j * np.interp(s, self.s, q.imag)
+
+
+def motion_amplitudes(axis: str, amplitude: float) -> np.ndarray:
+    """The complex amplitudes (x, y, z) [m] of d(t) = A sin(omega t) along ``axis``."""
+    out = np.zeros(3, complex)
+    out["xyz".index(axis)] = -1j * amplitude
+    return out

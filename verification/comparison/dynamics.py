@@ -1,0 +1,276 @@
+"""The dynamic comparison: the frequency-domain response about the BVP static state
+(:mod:`bvp.harmonic`) against the first harmonic of the VFIFE's time domain, for a
+harmonic hang-off motion, over a sweep of amplitudes.
+
+Both methods solve the same fixed-ends scene (a touchdown form converted once, as in the
+static protocol) with the same motion d(t) = A sin(2 pi t / T) along one axis. The VFIFE
+run: a half-cosine ramp of :data:`RAMP_PERIODS` periods or :data:`RAMP_FUNDAMENTALS` of
+the line's longest natural period if longer (:func:`ramp_periods`), :data:`SETTLE_PERIODS` periods
+for the start-up transient to decay (drag is the only damping of a still-water line, and
+at small amplitude it is light: a transient of the lowest modes lasts tens of periods;
+doubled while the window's two halves disagree, :data:`DRIFT_LIMIT`),
+then a window of :data:`WINDOW_PERIODS` periods sampled :data:`SAMPLES_PER_PERIOD` times
+a period; its statics are converged :data:`STATIC_TIGHTENING` times tighter than the
+default, because the static residual is released as a free oscillation whose size does
+not scale with the amplitude (measured on yu2021-a3 at 2 m elements: 15 mm of free motion
+from the default tolerances, 1.5 mm at a tenth of them). At every node the window is
+fitted by least squares (:mod:`.harmonics`): mean, first harmonic, 2nd and 3rd harmonics
+and the envelope, so that the nonlinearity is measured, not hidden.
+
+Rows (VFIFE - FD, each with its tolerance and reason, :data:`TOLERANCES`): the hang-off
+tension's first-harmonic amplitude and phase; along s, the largest difference of the
+tension, bending moment and displacement amplitudes over the FD's peak (the moment outside
+the contact zone: where the static line lies within the motion's reach of the seabed the
+VFIFE's contact opens and closes, which the FD's fixed contact zone does not, so there
+the difference is reported, not judged); the minimum tension over the cycle. Stations
+(hang-off, touchdown, sag bends, crests): amplitude and phase of the tension, reported.
+A response whose FD minimum tension goes below zero is slack over the cycle: outside the
+linear model, named ``slack_over_cycle``, rows not judged.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+import bvp
+import vfife
+from bvp.harmonic import solve_harmonic
+from riser.dynamics import Dynamics, TopMotion
+from riser.errors import SceneError, SolveFailed, UnsupportedSceneError
+from riser.response import HarmonicResponse, motion_amplitudes
+from riser.scene import Scene
+from verification.pipeline import vfife_equivalent
+
+from . import harmonics
+from .dynamic_rows import ABOVE_SMALLEST, DRIFT_LIMIT, agreement_rows, nonlinearity, \
+    station_rows
+
+RAMP_PERIODS = 3
+#: the ramp lasts at least this many of the line's longest natural period (see
+#: :func:`ramp_periods`)
+RAMP_FUNDAMENTALS = 2.0
+SETTLE_PERIODS = 6
+WINDOW_PERIODS = 12
+#: the settling is doubled (up to :data:`MAX_SETTLE_PERIODS`) while the first harmonic of
+#: the tension changes by more than :data:`.dynamic_rows.DRIFT_LIMIT` of its peak between
+#: the window's two halves (in still water the drag damps the start-up transient in
+#: proportion to the amplitude: measured on the flexible jumper's 0.1 m heave, 0.16 %
+#: drift after 9 periods and a moment 1.2 % off, 0.06 % and 0.66 % after 18)
+MAX_SETTLE_PERIODS = 24
+SAMPLES_PER_PERIOD = 40
+#: the VFIFE's static tolerances (force, tension, moment, creep) times this
+STATIC_TIGHTENING = 0.1
+#: the shortest period as a multiple of the time a transverse wave takes over one VFIFE
+#: element: below ~20 elements a wavelength the lumped masses misrepresent the wave
+MIN_ELEMENTS_PER_WAVE = 20
+
+@dataclass
+class AmplitudeResult:
+    """One amplitude of the sweep: the FD response, the VFIFE's fit, the rows."""
+
+    amplitude: float
+    fd: HarmonicResponse
+    vf: dict
+    rows: list
+    stations: list
+    nonlinearity: dict
+    warnings: list = field(default_factory=list)
+    vfife_wall_s: float = 0.0
+    fd_wall_s: float = 0.0
+
+    @property
+    def passed(self) -> bool:
+        return all(r["pass"] is not False for r in self.rows)
+
+
+@dataclass
+class DynamicComparison:
+    """The dynamic comparison of one scene: the motion (axis, period), the results per
+    amplitude, the static BVP result it linearised about, notes."""
+
+    scene: Scene
+    matched: Scene
+    axis: str
+    period: float
+    element_length: float
+    results: list
+    static: object
+    notes: list = field(default_factory=list)
+
+    @property
+    def passed(self) -> bool:
+        return all(r.passed for r in self.results)
+
+
+def motion_of(scene: Scene) -> tuple[str, float, float]:
+    """(axis, amplitude [m], period [s]) of the scene's harmonic [dynamics.top_motion];
+    SceneError (one line, exit 2) when it has none or a time series."""
+    dyn = scene.dynamics
+    tm = dyn.top_motion if dyn is not None else None
+    if tm is None:
+        raise SceneError(scene.source, "dynamics.top_motion", "required by the dynamic "
+                         "comparison (a harmonic hang-off motion: axis, amplitude, period)")
+    if tm.times is not None:
+        raise SceneError(scene.source, "dynamics.top_motion.times", "the dynamic "
+                         "comparison needs a harmonic motion (amplitude and period), not a "
+                         "time series: the frequency domain is harmonic")
+    return tm.axis, tm.amplitude, tm.period
+
+
+def check_period(scene: Scene, period: float, element_length: float, static) -> None:
+    """Refuse a period shorter than :data:`MIN_ELEMENTS_PER_WAVE` VFIFE elements per
+    transverse wavelength at the lowest tension of the suspended line (SceneError naming
+    the key)."""
+    p = static.profile
+    m = max(scene.line_types[s.line_type].mass_per_length for s in scene.segments)
+    hung = p.s >= (p.tdp_s or 0.0)               # on the seabed no transverse wave runs
+    t_low = max(float(np.min(p.tension[hung])), 1e-3 * float(np.max(p.tension)))
+    wave = math.sqrt(t_low / m) * period
+    if wave < MIN_ELEMENTS_PER_WAVE * element_length:
+        shortest = MIN_ELEMENTS_PER_WAVE * element_length / math.sqrt(t_low / m)
+        raise SceneError(scene.source, "dynamics.top_motion.period", f"{period:g} s makes a "
+                         f"transverse wave of {wave:.3g} m at the lowest tension, fewer than "
+                         f"{MIN_ELEMENTS_PER_WAVE} VFIFE elements of {element_length:g} m; "
+                         f"must be >= {shortest:.3g} s (or refine [vfife] element_length)")
+
+
+def ramp_periods(scene: Scene, period: float, static) -> tuple[int, float | None]:
+    """(ramp length in periods, the line's longest natural period [s]): at least
+    :data:`RAMP_PERIODS`, and :data:`RAMP_FUNDAMENTALS` times the longest natural period
+    (the first in-plane or out-of-plane mode of the BVP's modal analysis about the same
+    static state). Why: the harmonic response shifts the line's mean position (at second
+    order); a ramp short against the lowest natural period switches that shift on
+    suddenly and rings the lowest modes, which the drag of a small amplitude hardly damps
+    (measured on yu2021-a3, lowest period 149 s, heave 0.1 m at 12.4 s: a 3-period ramp
+    left the moment 7 % of its peak off after 36 periods; a ramp of 24 periods, 0.9 %)."""
+    from bvp.modes import solve_modes
+    modes = solve_modes(scene, 1, static=static)
+    longest = max((m.period_s for m in modes.modes), default=None)
+    if longest is None:
+        return RAMP_PERIODS, None
+    return max(RAMP_PERIODS, math.ceil(RAMP_FUNDAMENTALS * longest / period)), longest
+
+
+def dynamic_scene(scene: Scene, axis: str, amplitude: float, period: float,
+                  settle: int = SETTLE_PERIODS, ramp: int = RAMP_PERIODS) -> Scene:
+    """``scene`` with the protocol's [dynamics] (see the module docstring; a ``ramp`` of
+    that many periods, ``settle`` periods between the ramp and the window) and tighter
+    statics."""
+    dyn = scene.dynamics
+    total = (ramp + settle + WINDOW_PERIODS) * period
+    new = Dynamics(duration=total, output_interval=period / SAMPLES_PER_PERIOD,
+                   top_motion=TopMotion(axis=axis, amplitude=amplitude, period=period,
+                                        ramp_time=ramp * period),
+                   damping=dyn.damping if dyn is not None else 0.0,
+                   statistics_start=(ramp + settle) * period,
+                   save_states=True)
+    vf, f = scene.vfife, STATIC_TIGHTENING
+    return scene.replace(dynamics=new, **{
+        "vfife.static_tolerance": vf.static_tolerance * f,
+        "vfife.expert.tension_tolerance": vf.tension_tolerance * f,
+        "vfife.expert.moment_tolerance": vf.moment_tolerance * f,
+        "vfife.expert.creep_tolerance": vf.creep_tolerance * f})
+
+
+def compare_dynamics(scene: Scene, *, amplitudes=None, element_length: float | None = None,
+                     static=None, fd_modifier=None, vfife_modifier=None,
+                     progress=None) -> DynamicComparison:
+    """Compare the scene's harmonic motion by both methods at each of ``amplitudes`` [m]
+    (default the scene's). ``static``: the BVP static result of the matched scene (solved
+    here when None). ``fd_modifier``/``vfife_modifier`` (Scene -> Scene) alter one
+    method's scene only (the negative controls). Raises SceneError for a scene the
+    comparison cannot take (no harmonic motion, a period too short, the FD refusing),
+    SolveFailed when a method fails."""
+    now = progress or (lambda msg: None)
+    axis, amp0, period = motion_of(scene)
+    amps = sorted(amplitudes) if amplitudes else [amp0]
+    eq = vfife_equivalent(scene)
+    matched = eq.scene
+    notes = [f"The scene was converted: {eq.note}."] if eq.note else []
+    h = element_length or matched.vfife.element_length
+    if static is None:
+        now("bvp: static state")
+        static = bvp.solve(matched)
+    if not static.converged:
+        raise SolveFailed("bvp", static.status, f"bvp statics: {static.message}")
+    check_period(matched, period, h, static)
+    now("bvp: the longest natural period (the ramp's length)")
+    ramp, longest = ramp_periods(matched, period, static)
+    notes.append(f"The ramp lasts {ramp} periods ({ramp * period:g} s): at least "
+                 f"{RAMP_FUNDAMENTALS:g} times the longest natural period "
+                 + (f"({longest:.4g} s)." if longest else "(the modal analysis failed: "
+                    f"{RAMP_PERIODS} periods)."))
+    results = []
+    for k, a in enumerate(amps):
+        fd_scene = matched if fd_modifier is None else fd_modifier(matched)
+        now(f"frequency domain: amplitude {a:g} m ({k + 1}/{len(amps)})")
+        fd = solve_harmonic(fd_scene, period, motion_amplitudes(axis, a),
+                            static=static if fd_modifier is None else None)
+        if fd.status.value == "refused":
+            raise UnsupportedSceneError(fd.message)
+        if not fd.converged:
+            raise SolveFailed("bvp", fd.status, f"frequency domain: {fd.message}")
+        settle, wall = SETTLE_PERIODS, 0.0
+        while True:
+            vs = dynamic_scene(matched, axis, a, period, settle, ramp)
+            vs = vs if vfife_modifier is None else vfife_modifier(vs)
+            now(f"vfife: amplitude {a:g} m ({k + 1}/{len(amps)}), {settle} periods to settle")
+            t0 = time.perf_counter()
+            v = vfife.solve(vs, element_length=h, progress=progress)
+            wall += time.perf_counter() - t0
+            if not v.converged:
+                raise SolveFailed("vfife", v.status, f"vfife at amplitude {a:g} m: "
+                                  f"{v.message}")
+            vf = read_vfife(v, period, vs.dynamics.statistics_from, axis)
+            if vf["drift"] <= DRIFT_LIMIT or 2 * settle > MAX_SETTLE_PERIODS:
+                break
+            settle *= 2
+        vf["settle_periods"], vf["ramp_periods"] = settle, ramp
+        rows, zone, warns = agreement_rows(matched, fd, vf, static)
+        if k > 0:                  # the linear limit is judged; the rest measures nonlinearity
+            for row in rows:
+                if row["pass"] is not None:
+                    row["pass"], row["reason"] = None, ABOVE_SMALLEST
+        results.append(AmplitudeResult(a, fd, vf, rows, station_rows(fd, vf, static),
+                                       nonlinearity(vf, zone), warns, wall, fd.wall_time_s))
+    return DynamicComparison(scene, matched, axis, period, h, results, static, notes)
+
+
+def read_vfife(res, period: float, start: float, axis: str = "y") -> dict:
+    """First harmonics of the VFIFE's states over the window from ``start`` [s]: per
+    quantity (tension, moment: in-plane, about z; moment_out: about the static in-plane
+    normal; dx, dy, dz) a :class:`.harmonics.Harmonics`; ``s``; the window's minimum
+    tension; ``drift``: the largest change of the tension amplitude (of the out-of-plane
+    displacement for a motion along z, whose tension changes at second order only)
+    between the window's two halves over its peak (the transient still decaying; the
+    moment's is noisier: in heave its first harmonic can be small beside the
+    transient's)."""
+    st = res.dynamics.states
+    t, s, x = st["t"], st["s"], st["x"]
+    x0 = x[0]
+    tang = np.gradient(x0, s, axis=0)
+    tang /= np.linalg.norm(tang, axis=1)[:, None]
+    normal = np.stack([-tang[:, 1], tang[:, 0], np.zeros_like(s)], axis=1)
+    mv = st["moment_vector"]
+    series = {"tension": st["tension"].T, "moment": mv[:, :, 2].T,
+              "moment_out": np.einsum("kni,ni->nk", mv, normal),
+              "dx": x[:, :, 0].T, "dy": x[:, :, 1].T, "dz": x[:, :, 2].T}
+    out = {k: harmonics.fit(t, q, period, start) for k, q in series.items()}
+    sel = t >= start - 1e-9
+    out["s"] = s
+    out["min_tension"] = float(np.min(st["tension"][sel]))
+    half = start + 0.5 * (t[-1] - start)
+    first = t <= half + 1e-9
+    drift = 0.0
+    for key in (("dz",) if axis == "z" else ("tension",)):
+        peak = float(np.max(out[key].amplitude))
+        if peak > 1e-9 * max(float(np.max(np.abs(series[key]))), 1e-300):
+            a = harmonics.fit(t[first], series[key][:, first], period, start).amplitude
+            b = harmonics.fit(t, series[key], period, half).amplitude
+            drift = max(drift, float(np.max(np.abs(a - b))) / peak)
+    out["drift"], out["axis"] = drift, axis
+    return out
