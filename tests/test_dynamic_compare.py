@@ -23,7 +23,7 @@ from riser.environment import Current
 from riser.errors import SceneError
 from riser.response import motion_amplitudes
 from riser.result import Status
-from verification.catalog import resolve
+from verification.catalog import builtin_paths, resolve
 from verification.comparison import harmonics
 from verification.comparison.dynamic_rows import TOLERANCES
 from verification.comparison.dynamics import compare_dynamics
@@ -219,3 +219,29 @@ def test_sway_in_an_in_plane_current_agrees_and_leaves_the_tension_unjudged():
     for name in ("hang_off_tension_amplitude", "tension_amplitude"):
         assert rows[name]["pass"] is None and "first order" in rows[name]["reason"]
     assert comp.results[0].nonlinearity["quantity"] == "dz"
+
+
+def test_cli_compare_dynamics_writes_its_files(run_cli, tmp_path):
+    """``compare FILE --dynamics``: the static comparison then the dynamic one, exit 0 on
+    agreement, the files of the contract written (docs/comparison.md)."""
+    text = (builtin_paths()["scr-steel"].read_text()
+            .replace("length = 2000.0", "length = 420.0")
+            .replace("hang_off = [1500.0, 1000.0]", "hang_off = [300.0, 200.0]")
+            .replace("water_depth = 1000.0", "water_depth = 220.0")
+            .replace('name = "scr-steel"', 'name = "small-scr"'))
+    text += ("\n[environment.current]\nheights = [0.0, 220.0]\nspeeds = [0.8, 0.8]\n"
+             "\n[vfife]\nelement_length = 2.0\n"
+             "\n[dynamics]\nduration = 20.0\n\n[dynamics.top_motion]\naxis = \"y\"\n"
+             f"amplitude = 0.1\nperiod = {PERIOD}\n")
+    scene_file = tmp_path / "small-scr.toml"
+    scene_file.write_text(text)
+    out = tmp_path / "out"
+    code, stdout, err = run_cli(["-q", "compare", str(scene_file), "--dynamics", "--out",
+                                 str(out)])
+    assert code == 0, (stdout, err)
+    assert "small-scr dynamics: PASS" in stdout
+    for name in ("dynamic_agreement.csv", "stations.csv", "response.csv", "transfer.csv",
+                 "response.png", "sweep.png", "transfer.png", "report.md", "agreement.csv"):
+        assert (out / name).is_file(), name
+    report = (out / "report.md").read_text()
+    assert "## Agreement per amplitude" in report and "VFIFE vs BVP" in report

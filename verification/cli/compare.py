@@ -86,7 +86,8 @@ def cmd_compare_dynamics(args) -> int:
     from verification.comparison.dynamics import compare_dynamics, motion_of
     from verification.comparison.protocol import compare, default_columns
     from verification.comparison.report import report_markdown, write
-    files = outdir.COMPARE + dynamics_report.FILES
+    files = outdir.COMPARE + dynamics_report.FILES + tuple(
+        f for name in peers.names() for f in peers.peer(name).files)
     outdir.clear(args.out, files)
     check_ranges(args)
     amplitudes = parse_amplitudes(args.amplitudes)
@@ -105,13 +106,15 @@ def cmd_compare_dynamics(args) -> int:
         peer_md, peer_lines = "", []
         if args.peer and peers.peer(args.peer).dynamic is not None:
             peer_md, peer_lines = peers.peer(args.peer).dynamic(dc, out, prog)
-        dynamics_report.write(dc, out, report_markdown(comp, heading="##") + peer_md)
+        dynamics_report.write(dc, out, report_markdown(comp, heading="##"), peer_md)
     print(f"{scene.name}: static comparison {'PASS' if comp.passed else 'FAIL'}")
     for line in dynamics_report.console_lines(dc) + peer_lines:
         print(line)
     print(f"{scene.name} dynamics: {'PASS' if dc.passed else 'FAIL'}; wrote "
           f"{out}/dynamic_agreement.csv, report.md")
-    return 0 if comp.passed and dc.passed else 1
+    warned = max(print_warnings(comp.bvp, args.strict), print_warnings(comp.vfife, args.strict))
+    dyn_warned = args.strict and any(r.warnings for r in dc.results)
+    return 0 if comp.passed and dc.passed and not warned and not dyn_warned else 1
 
 
 def cmd_modes(args) -> int:

@@ -4,12 +4,13 @@ harmonic hang-off motion, over a sweep of amplitudes.
 
 Both methods solve the same fixed-ends scene (a touchdown form converted once, as in the
 static protocol) with the same motion d(t) = A sin(2 pi t / T) along one axis. The VFIFE
-run: a half-cosine ramp of :data:`RAMP_PERIODS` periods or :data:`RAMP_FUNDAMENTALS` of
-the line's longest natural period if longer (:func:`ramp_periods`), :data:`SETTLE_PERIODS` periods
-for the start-up transient to decay (drag is the only damping of a still-water line, and
-at small amplitude it is light: a transient of the lowest modes lasts tens of periods;
-doubled while the window's two halves disagree, :data:`DRIFT_LIMIT`),
-then a window of :data:`WINDOW_PERIODS` periods sampled :data:`SAMPLES_PER_PERIOD` times
+run: a half-cosine ramp of :data:`RAMP_PERIODS` periods, or :data:`RAMP_FUNDAMENTALS`
+times the line's longest natural period if longer (:func:`ramp_periods`);
+:data:`SETTLE_PERIODS` periods for the start-up transient to decay (drag is the only
+damping of a still-water line, and at small amplitude it is light: a transient of the
+lowest modes lasts tens of periods), doubled while the window's two halves disagree
+(:data:`.dynamic_rows.DRIFT_LIMIT`); then a window of :data:`WINDOW_PERIODS` periods
+sampled :data:`SAMPLES_PER_PERIOD` times
 a period; its statics are converged :data:`STATIC_TIGHTENING` times tighter than the
 default, because the static residual is released as a free oscillation whose size does
 not scale with the amplitude (measured on yu2021-a3 at 2 m elements: 15 mm of free motion
@@ -17,7 +18,7 @@ from the default tolerances, 1.5 mm at a tenth of them). At every node the windo
 fitted by least squares (:mod:`.harmonics`): mean, first harmonic, 2nd and 3rd harmonics
 and the envelope, so that the nonlinearity is measured, not hidden.
 
-Rows (VFIFE - FD, each with its tolerance and reason, :data:`TOLERANCES`): the hang-off
+Rows (:mod:`.dynamic_rows`; VFIFE against FD, each with its tolerance and reason): the hang-off
 tension's first-harmonic amplitude and phase; along s, the largest difference of the
 tension, bending moment and displacement amplitudes over the FD's peak (the moment outside
 the contact zone: where the static line lies within the motion's reach of the seabed the
@@ -204,6 +205,11 @@ def compare_dynamics(scene: Scene, *, amplitudes=None, element_length: float | N
                  f"{RAMP_FUNDAMENTALS:g} times the longest natural period "
                  + (f"({longest:.4g} s)." if longest else "(the modal analysis failed: "
                     f"{RAMP_PERIODS} periods)."))
+    if matched.seabed is not None and matched.seabed.friction > 0.0:
+        notes.append(f"The seabed friction ({matched.seabed.friction:g}) is in the VFIFE only: "
+                     "the frequency domain has the grounded line on vertical springs, free "
+                     "along the seabed (a small-motion model); the difference near and on "
+                     "the seabed includes it.")
     results = []
     for k, a in enumerate(amps):
         fd_scene = matched if fd_modifier is None else fd_modifier(matched)

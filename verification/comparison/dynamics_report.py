@@ -8,8 +8,10 @@ basis, pass), ``stations.csv`` (amplitude_m, station, s, fd_amplitude, vfife_amp
 rel_diff, phase_diff_deg), ``response.csv`` (amplitude_m, s, the FD's and the VFIFE's
 tension [N], moment [N m] and displacement [m] amplitudes, the tension phases [deg]),
 ``transfer.csv`` (period_s, hang_off_tension_per_m [N/m], max_moment_per_m [N m/m],
-max_curvature_per_m [1/m2]: the FD per unit motion), ``response.png``, ``sweep.png``,
-``transfer.png``; the static comparison's files beside them.
+max_curvature_per_m [1/m2]: the FD per unit motion), ``transfer_along_s.csv`` (period_s,
+s, tension_per_m, moment_per_m, curvature_per_m: the same along s at 101 stations),
+``response.png``, ``sweep.png``, ``transfer.png``; the static comparison's files beside
+them (its report the first section of ``report.md``).
 """
 
 from __future__ import annotations
@@ -27,7 +29,9 @@ from .dynamic_rows import DRIFT_LIMIT, TOLERANCES
 from .dynamics import RAMP_PERIODS, SETTLE_PERIODS, WINDOW_PERIODS, DynamicComparison
 
 FILES = ("dynamic_agreement.csv", "stations.csv", "response.csv", "transfer.csv",
-         "response.png", "sweep.png", "transfer.png", "report.md")
+         "transfer_along_s.csv", "response.png", "sweep.png", "transfer.png", "report.md")
+#: stations along s of ``transfer_along_s.csv`` (evenly spaced, the ends included)
+TRANSFER_STATIONS = 101
 #: periods of the transfer functions, as multiples of the motion's period
 TRANSFER_SPAN = (0.5, 3.0)
 TRANSFER_PERIODS = 24
@@ -35,24 +39,33 @@ PASS_WORD = {True: "yes", False: "**no**", None: "n/a"}
 _QUANTITY = {"tension": "tension", "dz": "out-of-plane displacement"}
 
 
-def transfer(dc: DynamicComparison) -> pd.DataFrame:
+def transfer(dc: DynamicComparison) -> tuple[pd.DataFrame, pd.DataFrame]:
     """The FD's transfer functions per unit motion over :data:`TRANSFER_PERIODS` periods
     (geometric, :data:`TRANSFER_SPAN` times the motion's), the drag linearised at the
-    smallest amplitude of the sweep."""
+    smallest amplitude of the sweep: (the hang-off tension and the largest moment and
+    curvature per period, the tension, moment and curvature amplitudes along s at
+    :data:`TRANSFER_STATIONS` stations per period)."""
     lo, hi = TRANSFER_SPAN
     periods = dc.period * np.geomspace(lo, hi, TRANSFER_PERIODS)
     amp = dc.results[0].amplitude
-    rows = []
+    rows, along = [], []
     for r in transfer_sweep(dc.matched, periods, dc.axis, static=dc.static, amplitude=amp,
                             tolerance=1e-4, intervals=3000):
         if not r.converged:
             continue
+        moment = np.abs(r.amplitudes["moment"]) + np.abs(r.amplitudes["moment_out"])
         rows.append({"period_s": r.period,
                      "hang_off_tension_per_m": float(abs(r.amplitudes["tension"][-1])),
-                     "max_moment_per_m": float(np.max(np.abs(r.amplitudes["moment"]) +
-                                                      np.abs(r.amplitudes["moment_out"]))),
+                     "max_moment_per_m": float(np.max(moment)),
                      "max_curvature_per_m": float(np.max(np.abs(r.amplitudes["curvature"])))})
-    return pd.DataFrame(rows)
+        s = np.linspace(r.s[0], r.s[-1], TRANSFER_STATIONS)
+        along.append(pd.DataFrame({
+            "period_s": r.period, "s": s,
+            "tension_per_m": np.abs(r.at("tension", s)),
+            "moment_per_m": np.abs(r.at("moment", s)) + np.abs(r.at("moment_out", s)),
+            "curvature_per_m": np.abs(r.at("curvature", s))}))
+    return pd.DataFrame(rows), (pd.concat(along, ignore_index=True) if along
+                                else pd.DataFrame())
 
 
 def frames(dc: DynamicComparison) -> dict:
@@ -81,25 +94,26 @@ def frames(dc: DynamicComparison) -> dict:
 
 
 def write(dc: DynamicComparison, out: str | Path, static_markdown: str = "",
-          transfer_frame: pd.DataFrame | None = None) -> None:
+          peer_markdown: str = "") -> None:
     """Every file of the module docstring into ``out``; ``static_markdown``: the static
     comparison's report, the first section."""
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     tables = frames(dc)
-    tables["transfer.csv"] = transfer(dc) if transfer_frame is None else transfer_frame
+    tables["transfer.csv"], tables["transfer_along_s.csv"] = transfer(dc)
     for name, frame in tables.items():
         frame.to_csv(out / name, index=False, float_format="%.8g")
     _plots(dc, tables, out)
-    (out / "report.md").write_text(markdown(dc, static_markdown))
+    (out / "report.md").write_text(markdown(dc, static_markdown, peer_markdown))
 
 
-def markdown(dc: DynamicComparison, static_markdown: str = "", heading: str = "#") -> str:
+def markdown(dc: DynamicComparison, static_markdown: str = "", peer_markdown: str = "",
+             heading: str = "#") -> str:
     sc = dc.scene
     verdict = "PASS" if dc.passed else "FAIL"
     lines = [f"{heading} Dynamic response, frequency domain vs VFIFE: `{sc.name}`", "",
              GENERATED_NOTE, "", f"**Verdict: {verdict}** (the judged rows of every "
-             "amplitude; the static comparison below has its own verdict)", ""]
+             "amplitude; the static comparison has its own verdict)", ""]
     lines += [f"- Motion: d(t) = A sin(2 pi t / T) along {dc.axis}, T = {dc.period:g} s, "
               f"A = {', '.join(f'{r.amplitude:g}' for r in dc.results)} m.",
               "- Frequency domain (`bvp/harmonic.py`): linearised about the BVP static "
@@ -112,6 +126,8 @@ def markdown(dc: DynamicComparison, static_markdown: str = "", heading: str = "#
               f"{WINDOW_PERIODS} periods at every node (statics 10x tighter than the "
               "default: the static residual would ring as a free oscillation)."]
     lines += [f"- {n}" for n in dc.notes]
+    if static_markdown:
+        lines += ["", static_markdown]
     lines += ["", f"{heading}# Agreement per amplitude", ""]
     for r in dc.results:
         lines += [f"Amplitude {r.amplitude:g} m: FD {r.fd_wall_s:.2f} s, VFIFE "
@@ -149,9 +165,9 @@ def markdown(dc: DynamicComparison, static_markdown: str = "", heading: str = "#
         f"{heading}# Figures", "", "![response along s](response.png)", "",
         "![differences over the amplitude sweep](sweep.png)", "",
         "![transfer functions](transfer.png)", "",
-        "Files: " + ", ".join(f"`{f}`" for f in FILES[:4]) + ".", ""]
-    if static_markdown:
-        lines += [static_markdown]
+        "Files: " + ", ".join(f"`{f}`" for f in FILES[:5]) + ".", ""]
+    if peer_markdown:
+        lines.append(peer_markdown)
     return "\n".join(lines)
 
 
