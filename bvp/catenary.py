@@ -84,7 +84,10 @@ def _segment_offsets(ds: np.ndarray, w, H: float, Va, iEA=0.0) -> tuple[np.ndarr
     zs = np.where(z > 1e-8, z, 1.0)
     ratio = np.where(z > 1e-8, np.arcsinh(zs) / zs, 1.0 - z * z / 6.0)
     wsafe = np.where(w != 0.0, w, 1.0)
-    plain = H / wsafe * (np.arcsinh(b) - np.arcsinh(a))
+    # evaluated everywhere, used only where the shear changes sign: on a near-weightless
+    # segment elsewhere H / w overflows harmlessly (a RuntimeWarning the fuzzer met)
+    with np.errstate(over="ignore", invalid="ignore"):
+        plain = H / wsafe * (np.arcsinh(b) - np.arcsinh(a))
     dx = np.where(same, ds * ratio * D, plain)
     return dx + H * ds * iEA, dy + (2.0 * Va + w * ds) * ds * 0.5 * iEA
 

@@ -126,6 +126,20 @@ def test_the_segment_offsets_have_no_cancellation():
     assert worst < 1e-15, worst
 
 
+def test_a_near_weightless_segment_is_straight_without_a_warning():
+    """w = 1e-306 N/m (a fuzzed input): H / w overflows in the branch that is not used;
+    the offsets are the straight segment's along (H, V) and no RuntimeWarning leaks (the
+    deck fuzzer met one)."""
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        dx, dy = _segment_offsets(np.array([10.0]), np.array([1e-306]), 1e5,
+                                  np.array([1.0]), np.array([0.0]))
+    # a straight line along the force (H, V) = (1e5, 1) N; round-off only
+    assert dx[0] == pytest.approx(10.0 / math.hypot(1.0, 1e-5), rel=1e-13)
+    assert dy[0] == pytest.approx(10.0 * 1e-5 / math.hypot(1.0, 1e-5), rel=1e-9)
+
+
 @pytest.mark.parametrize("slack, EA", [(1e-2, 1e9), (1e-5, 1e9), (0.0, 1e9), (-1e-5, 1e9),
                                        (-1e-3, 1e9), (1e-5, 1e6), (-1e-3, 1e6)])
 def test_the_pinned_catenary_is_found_slack_to_stretched(slack, EA):
