@@ -45,13 +45,8 @@ from verification.runtime import interrupts, outdir, progress as pg
 from verification.runtime.scheduler_probe import PROBE_TIMEOUT_S, ProbeFailed, probe
 from verification.sweeps.run import duration_text, estimate_line
 
-try:
-    import distributed
-except ImportError:
-    distributed = None
+from extras import needs_dask
 
-needs_dask = pytest.mark.skipif(distributed is None, reason="the optional extra [cluster] "
-                                "(dask.distributed) is not installed")
 ROOT = Path(__file__).resolve().parents[1]
 IS_ROOT = hasattr(os, "geteuid") and os.geteuid() == 0
 

@@ -24,13 +24,8 @@ import pytest
 
 from verification.runtime.engine import EngineError, require_dask
 
-try:
-    import distributed
-except ImportError:
-    distributed = None
+from extras import needs_dask
 
-needs_dask = pytest.mark.skipif(distributed is None, reason="the optional extra [cluster] "
-                                "(dask.distributed) is not installed")
 ROOT = Path(__file__).resolve().parents[1]
 
 #: 2 hang-off offsets x 2 currents of the steel catenary riser: 4 cases of ~1-2 s each
