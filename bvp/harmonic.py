@@ -33,17 +33,16 @@ import math
 import time
 
 import numpy as np
-from scipy.sparse import coo_matrix
 from scipy.sparse.linalg import splu
 
 from riser.errors import UnsupportedSceneError
 from riser.response import HarmonicResponse, motion_amplitudes
 from riser.result import SolveResult, Status
 from riser.scene import Scene
-from riser.sections import segment_properties
 
 from . import harmonic_equations as he
-from .modal_equations import FAMILIES, Piece, build_pieces, require_linearisable, state_scales
+from .modal_equations import (FAMILIES, Piece, box_matrix, build_pieces,
+                              require_linearisable, state_scales)
 
 #: under-relaxation of the drag coefficients' fixed point
 RELAXATION = 0.5
@@ -167,9 +166,8 @@ def _grid(pieces: list[Piece], intervals: int) -> np.ndarray:
 
 def _fields(scene: Scene, pieces: list[Piece], s: np.ndarray, which: np.ndarray) -> dict:
     """Static flow and section fields at the points s (piece index ``which``)."""
-    props = segment_properties(scene)
-    starts = np.array([p.s_start for p in props])
     theta, y = np.empty(s.size), np.empty(s.size)
+    c_n, c_t = np.empty(s.size), np.empty(s.size)
     csb = np.zeros(s.size)
     sb = scene.seabed
     # the contact damping ratio as the VFIFE applies it: at most critical (more only slows
@@ -179,11 +177,9 @@ def _fields(scene: Scene, pieces: list[Piece], s: np.ndarray, which: np.ndarray)
         sel = which == i
         st = pc.static(s[sel])
         theta[sel], y[sel] = st["theta"], st["y"]
+        c_n[sel], c_t[sel] = pc.c_n, pc.c_t
         if pc.contact and zeta > 0.0:
             csb[sel] = 2.0 * zeta * math.sqrt(pc.k * (pc.m + pc.ma))
-    seg = np.clip(np.searchsorted(starts, s, side="right") - 1, 0, len(props) - 1)
-    c_n = np.array([p.drag_normal_coef for p in props])[seg]
-    c_t = np.array([p.drag_tangential_coef for p in props])[seg]
     cur = scene.current
     if cur is not None:
         sign = float(cur.direction[0])
@@ -255,9 +251,15 @@ def _solve(scene, pieces, period, motion, tol, max_iter, s, start=None) -> Harmo
 def _family(pieces, plane, ops, s, h, omega, c_s, f, motion, clamped) -> np.ndarray:
     """States (N + 1, n) of one family by the box scheme (see the module docstring)."""
     fam = FAMILIES[plane]
+    n, N = fam.n, h.size
+    b0 = fam.clamped if "bottom" in clamped else fam.pinned
+    b1 = fam.clamped if "top" in clamped else fam.pinned
+    driven = [(k, i) for k, i in enumerate(b1)
+              if fam.disp[i] is not None and motion[fam.disp[i]] != 0.0]
+    if not driven:
+        return np.zeros((N + 1, n), complex)      # no motion of this family
     A, B = ops[plane]
     K = (he.in_plane if plane == "in_plane" else he.out_of_plane)(A, B, omega, c_s, f)
-    n, N = fam.n, h.size
     L = s[-1] - s[0]
     wave = 2.0 * math.pi * math.sqrt(max(float(np.max(np.abs(pc.spl["T"](pc.s1))))
                                          for pc in pieces) / max(pc.m + pc.ma
@@ -266,28 +268,10 @@ def _family(pieces, plane, ops, s, h, omega, c_s, f, motion, clamped) -> np.ndar
     K = K * sc[None, None, :] / sc[None, :, None]
     eye = np.eye(n)[None]
     hh = 0.5 * h[:, None, None]
-    left, right = -eye - hh * K, eye - hh * K
-    b0 = fam.clamped if "bottom" in clamped else fam.pinned
-    b1 = fam.clamped if "top" in clamped else fam.pinned
-    r0 = len(b0)
-    R = np.broadcast_to(r0 + np.arange(N)[:, None, None] * n + np.arange(n)[None, :, None],
-                        (N, n, n))
-    C = np.broadcast_to(np.arange(N)[:, None, None] * n + np.arange(n)[None, None, :],
-                        (N, n, n))
-    rows = np.concatenate([np.arange(r0), R.ravel(), R.ravel(), r0 + N * n +
-                           np.arange(len(b1))])
-    cols = np.concatenate([np.asarray(b0), C.ravel(), (C + n).ravel(), N * n +
-                           np.asarray(b1)])
-    vals = np.concatenate([np.ones(r0), left.ravel(), right.ravel(), np.ones(len(b1))])
-    size = (N + 1) * n
-    M = coo_matrix((vals.astype(complex), (rows, cols)), shape=(size, size)).tocsc()
-    rhs = np.zeros(size, complex)
-    for k, i in enumerate(b1):
-        comp = fam.disp[i]
-        if comp is not None:
-            rhs[r0 + N * n + k] = motion[comp] / sc[i]
-    if not np.any(rhs):
-        return np.zeros((N + 1, n), complex)      # no motion of this family
+    M = box_matrix(-eye - hh * K, eye - hh * K, (b0, b1), 1.0 + 0.0j)
+    rhs = np.zeros((N + 1) * n, complex)
+    for k, i in driven:
+        rhs[len(b0) + N * n + k] = motion[fam.disp[i]] / sc[i]
     # the matrix is block-bidiagonal with the end rows: no fill-reducing ordering needed
     Y = splu(M, permc_spec="NATURAL").solve(rhs)
     return Y.reshape(N + 1, n) * sc[None, :]

@@ -301,6 +301,30 @@ def _arpack_start(size: int) -> dict:
     return kw
 
 
+def box_matrix(left: np.ndarray, right: np.ndarray, ends: tuple, end_value: float):
+    """The sparse (CSC) matrix of the box scheme on N intervals of a state of n: the rows
+    of the end conditions first (``ends`` = (states zero at s = 0, states zero or given at
+    s = L), each the coefficient ``end_value`` on its state), then per interval j the n rows
+    ``left[j] Y[j] + right[j] Y[j+1]`` (``left``, ``right``: (N, n, n), real or complex);
+    unknowns Y[0], ..., Y[N] in order. The same pattern serves the modes' stiffness and
+    mass and the harmonic response."""
+    N, n = left.shape[0], left.shape[1]
+    b0, b1 = ends
+    r0 = len(b0)
+    R = np.broadcast_to(r0 + np.arange(N)[:, None, None] * n + np.arange(n)[None, :, None],
+                        (N, n, n))
+    C = np.broadcast_to(np.arange(N)[:, None, None] * n + np.arange(n)[None, None, :],
+                        (N, n, n))
+    rows = np.concatenate([np.arange(r0), R.ravel(), R.ravel(),
+                           r0 + N * n + np.arange(len(b1))])
+    cols = np.concatenate([np.asarray(b0), C.ravel(), (C + n).ravel(),
+                           N * n + np.asarray(b1)])
+    vals = np.concatenate([np.full(r0, end_value), left.ravel(), right.ravel(),
+                           np.full(len(b1), end_value)])
+    size = (N + 1) * n
+    return coo_matrix((vals, (rows, cols)), shape=(size, size)).tocsc()
+
+
 def box_modes(pieces: list[Piece], fam: Family, ends: tuple, count: int,
               intervals: int = 3000):
     """Approximate lowest ``count`` (+ a few) modes by the box scheme (midpoint rule on
@@ -335,23 +359,9 @@ def box_modes(pieces: list[Piece], fam: Family, ends: tuple, count: int,
     Bm = Bm * sc[None, None, :] / sc[None, :, None]
     eye = np.eye(n)[None]
     hh = 0.5 * h[:, None, None]
-    left, right = -eye - hh * A, eye - hh * A
-    b0, b1 = ends
-    r0 = len(b0)
-    rows_i = r0 + np.arange(N)[:, None, None] * n + np.arange(n)[None, :, None]
-    cols_j = np.arange(N)[:, None, None] * n + np.arange(n)[None, None, :]
-    R = np.broadcast_to(rows_i, (N, n, n))
-    Cl = np.broadcast_to(cols_j, (N, n, n))
-    rows = np.concatenate([np.arange(r0), R.ravel(), R.ravel(),
-                           r0 + N * n + np.arange(len(b1))])
-    cols = np.concatenate([np.asarray(b0), Cl.ravel(), (Cl + n).ravel(),
-                           N * n + np.asarray(b1)])
-    kv = np.concatenate([np.ones(r0), left.ravel(), right.ravel(), np.ones(len(b1))])
-    mv = np.concatenate([np.zeros(r0), (hh * Bm).ravel(), (hh * Bm).ravel(),
-                         np.zeros(len(b1))])
+    K = box_matrix(-eye - hh * A, eye - hh * A, ends, 1.0)
+    M = box_matrix(hh * Bm, hh * Bm, ends, 0.0)
     size = (N + 1) * n
-    K = coo_matrix((kv, (rows, cols)), shape=(size, size)).tocsc()
-    M = coo_matrix((mv, (rows, cols)), shape=(size, size)).tocsc()
     # shift: a tenth of a string's first eigenvalue below zero (every eigenvalue of a
     # stable static state is positive, so the nearest to the shift are the lowest)
     mmax = max(pc.m + pc.ma for pc in pieces)
