@@ -35,8 +35,8 @@ import time
 import numpy as np
 from scipy.sparse.linalg import splu
 
-from riser.errors import UnsupportedSceneError
-from riser.response import HarmonicResponse, motion_amplitudes
+from riser.errors import SceneError, UnsupportedSceneError
+from riser.response import HarmonicResponse, harmonic_motion, motion_amplitudes
 from riser.result import SolveResult, Status
 from riser.scene import Scene
 
@@ -110,18 +110,15 @@ def transfer_sweep(scene: Scene, periods, axis: str, *, static: SolveResult | No
 
 
 def _motion(scene: Scene, motion) -> np.ndarray:
+    """The complex amplitudes (x, y, z) of ``motion``, else of the scene's harmonic
+    motion (:func:`riser.response.harmonic_motion`; refused as unsupported without one)."""
     if motion is not None:
         return np.asarray(motion, complex).reshape(3)
-    dyn = scene.dynamics
-    tm = dyn.top_motion if dyn is not None else None
-    if tm is None:
-        raise UnsupportedSceneError(f"{scene.source}: dynamics.top_motion: required (the "
-                                    "hang-off motion of the harmonic response)")
-    if tm.times is not None:
-        raise UnsupportedSceneError(
-            f"{scene.source}: dynamics.top_motion.times: a time series is not harmonic: "
-            "the frequency domain needs amplitude and period")
-    return motion_amplitudes(tm.axis, tm.amplitude)
+    try:
+        axis, amplitude, _ = harmonic_motion(scene)
+    except SceneError as exc:
+        raise UnsupportedSceneError(str(exc)) from None
+    return motion_amplitudes(axis, amplitude)
 
 
 def require_harmonic(scene: Scene, motion: np.ndarray) -> None:

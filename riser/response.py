@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .errors import SceneError
 from .result import Status
 
 #: the response quantities along s (``HarmonicResponse`` fields, ``response.csv`` columns)
@@ -72,3 +73,19 @@ def motion_amplitudes(axis: str, amplitude: float) -> np.ndarray:
     out = np.zeros(3, complex)
     out["xyz".index(axis)] = -1j * amplitude
     return out
+
+
+def harmonic_motion(scene) -> tuple[str, float, float]:
+    """(axis, amplitude [m], period [s]) of the scene's harmonic [dynamics.top_motion];
+    SceneError (one line, exit 2) when it has none or a time series (the harmonic
+    response, of either method, needs a harmonic motion)."""
+    dyn = scene.dynamics
+    tm = dyn.top_motion if dyn is not None else None
+    if tm is None:
+        raise SceneError(scene.source, "dynamics.top_motion", "required by the harmonic "
+                         "response (a harmonic hang-off motion: axis, amplitude, period)")
+    if tm.times is not None:
+        raise SceneError(scene.source, "dynamics.top_motion.times", "the harmonic response "
+                         "needs a harmonic motion (amplitude and period), not a time series: "
+                         "the frequency domain is harmonic")
+    return tm.axis, tm.amplitude, tm.period

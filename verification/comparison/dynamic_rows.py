@@ -125,7 +125,7 @@ def agreement_rows(scene: Scene, fd: HarmonicResponse, vf: dict, static):
                      abs(top_vf) / abs(top_fd) - 1.0, s[-1], slack),
                 _row("hang_off_tension_phase_deg", math.degrees(np.angle(top_fd)),
                      math.degrees(np.angle(top_vf)),
-                     _wrap(math.degrees(np.angle(top_vf) - np.angle(top_fd))), s[-1], slack)]
+                     wrap_deg(math.degrees(np.angle(top_vf) - np.angle(top_fd))), s[-1], slack)]
         rel, where = _along(q["tension"], vf["tension"].first, s)
         rows.append(_row("tension_amplitude", float(np.max(np.abs(q["tension"]))),
                          float(np.max(vf["tension"].amplitude)), rel, where, slack))
@@ -178,7 +178,7 @@ def station_rows(fd: HarmonicResponse, vf: dict, static) -> list[dict]:
         b = complex(np.interp(sv, s, vt.real) + 1j * np.interp(sv, s, vt.imag))
         out.append({"station": name, "s": sv, "fd_amplitude": abs(a), "vfife_amplitude":
                     abs(b), "rel_diff": abs(b) / abs(a) - 1.0 if abs(a) > 0 else None,
-                    "phase_diff_deg": _wrap(math.degrees(np.angle(b) - np.angle(a)))})
+                    "phase_diff_deg": wrap_deg(math.degrees(np.angle(b) - np.angle(a)))})
     return out
 
 
@@ -200,5 +200,6 @@ def nonlinearity(vf: dict, zone) -> dict:
             "settle_periods": vf.get("settle_periods")}
 
 
-def _wrap(deg: float) -> float:
+def wrap_deg(deg: float) -> float:
+    """An angle difference [deg] in [-180, 180)."""
     return (deg + 180.0) % 360.0 - 180.0

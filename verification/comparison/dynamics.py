@@ -42,7 +42,7 @@ import vfife
 from bvp.harmonic import solve_harmonic
 from riser.dynamics import Dynamics, TopMotion
 from riser.errors import SceneError, SolveFailed, UnsupportedSceneError
-from riser.response import HarmonicResponse, motion_amplitudes
+from riser.response import HarmonicResponse, harmonic_motion, motion_amplitudes
 from riser.scene import Scene
 from verification.pipeline import vfife_equivalent
 
@@ -105,21 +105,6 @@ class DynamicComparison:
     @property
     def passed(self) -> bool:
         return all(r.passed for r in self.results)
-
-
-def motion_of(scene: Scene) -> tuple[str, float, float]:
-    """(axis, amplitude [m], period [s]) of the scene's harmonic [dynamics.top_motion];
-    SceneError (one line, exit 2) when it has none or a time series."""
-    dyn = scene.dynamics
-    tm = dyn.top_motion if dyn is not None else None
-    if tm is None:
-        raise SceneError(scene.source, "dynamics.top_motion", "required by the dynamic "
-                         "comparison (a harmonic hang-off motion: axis, amplitude, period)")
-    if tm.times is not None:
-        raise SceneError(scene.source, "dynamics.top_motion.times", "the dynamic "
-                         "comparison needs a harmonic motion (amplitude and period), not a "
-                         "time series: the frequency domain is harmonic")
-    return tm.axis, tm.amplitude, tm.period
 
 
 def check_period(scene: Scene, period: float, element_length: float, static) -> None:
@@ -187,7 +172,7 @@ def compare_dynamics(scene: Scene, *, amplitudes=None, element_length: float | N
     comparison cannot take (no harmonic motion, a period too short, the FD refusing),
     SolveFailed when a method fails."""
     now = progress or (lambda msg: None)
-    axis, amp0, period = motion_of(scene)
+    axis, amp0, period = harmonic_motion(scene)
     amps = sorted(amplitudes) if amplitudes else [amp0]
     eq = vfife_equivalent(scene)
     matched = eq.scene

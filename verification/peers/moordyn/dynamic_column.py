@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from verification.comparison.dynamic_rows import wrap_deg
 from verification.comparison.dynamics import RAMP_PERIODS, SETTLE_PERIODS, dynamic_scene
 from verification.report.markdown import md_table, pct
 
@@ -96,7 +97,7 @@ def _row(name, md, fd, vf, relative: bool) -> dict:
     if relative:
         a, b = md / fd - 1.0, md / vf - 1.0
     else:
-        a, b = _wrap(md - fd), _wrap(md - vf)
+        a, b = wrap_deg(md - fd), wrap_deg(md - vf)
     return {"quantity": name, "moordyn": md, "fd": fd, "vfife": vf, "moordyn_vs_fd": a,
             "moordyn_vs_vfife": b, "tolerance": TOLERANCE if relative else 1.0}
 
@@ -104,7 +105,3 @@ def _row(name, md, fd, vf, relative: bool) -> dict:
 def _fmt(r: dict, key: str) -> str:
     v = r[key]
     return f"{v:+.3f} deg" if r["quantity"].endswith("_deg") else pct(v)
-
-
-def _wrap(deg: float) -> float:
-    return (deg + 180.0) % 360.0 - 180.0
