@@ -13,6 +13,7 @@ cores (four VFIFE runs of ~6 s and their statics).
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -221,9 +222,8 @@ def test_sway_in_an_in_plane_current_agrees_and_leaves_the_tension_unjudged():
     assert comp.results[0].nonlinearity["quantity"] == "dz"
 
 
-def test_cli_compare_dynamics_writes_its_files(run_cli, tmp_path):
-    """``compare FILE --dynamics``: the static comparison then the dynamic one, exit 0 on
-    agreement, the files of the contract written (docs/comparison.md)."""
+def _scene_file(tmp_path) -> Path:
+    """The module's scene (:func:`_scene`) as a scene file."""
     text = (builtin_paths()["scr-steel"].read_text()
             .replace("length = 2000.0", "length = 420.0")
             .replace("hang_off = [1500.0, 1000.0]", "hang_off = [300.0, 200.0]")
@@ -235,6 +235,13 @@ def test_cli_compare_dynamics_writes_its_files(run_cli, tmp_path):
              f"amplitude = 0.1\nperiod = {PERIOD}\n")
     scene_file = tmp_path / "small-scr.toml"
     scene_file.write_text(text)
+    return scene_file
+
+
+def test_cli_compare_dynamics_writes_its_files(run_cli, tmp_path):
+    """``compare FILE --dynamics``: the static comparison then the dynamic one, exit 0 on
+    agreement, the files of the contract written (docs/comparison.md)."""
+    scene_file = _scene_file(tmp_path)
     out = tmp_path / "out"
     code, stdout, err = run_cli(["-q", "compare", str(scene_file), "--dynamics", "--out",
                                  str(out)])
@@ -245,3 +252,15 @@ def test_cli_compare_dynamics_writes_its_files(run_cli, tmp_path):
         assert (out / name).is_file(), name
     report = (out / "report.md").read_text()
     assert "## Agreement per amplitude" in report and "VFIFE vs BVP" in report
+
+
+def test_cli_implausible_amplitude_is_refused_before_solving(run_cli, tmp_path):
+    """--amplitudes 100 at 5.8 s (a peak speed of 108 m/s): one line naming the scene key
+    and its limit, exit 2, before anything is solved (no output written)."""
+    out = tmp_path / "out"
+    code, stdout, err = run_cli(["-q", "compare", str(_scene_file(tmp_path)), "--dynamics",
+                                 "--amplitudes", "0.1,100", "--out", str(out)])
+    lines = err.strip().splitlines()
+    assert code == 2 and len(lines) == 1
+    assert "dynamics.top_motion.amplitude" in lines[0] and "<= 20 m/s" in lines[0]
+    assert not (out / "agreement.csv").exists()

@@ -83,8 +83,7 @@ def cmd_compare_dynamics(args) -> int:
     """``compare SCENE --dynamics``: the static comparison, then the scene's harmonic
     motion by the frequency domain and the VFIFE (verification.comparison.dynamics)."""
     from verification.comparison import dynamics_report
-    from riser.response import harmonic_motion
-    from verification.comparison.dynamics import compare_dynamics
+    from verification.comparison.dynamics import check_motions, compare_dynamics
     from verification.comparison.protocol import compare, default_columns
     from verification.comparison.report import report_markdown, write
     files = outdir.COMPARE + dynamics_report.FILES + tuple(
@@ -93,7 +92,7 @@ def cmd_compare_dynamics(args) -> int:
     check_ranges(args)
     amplitudes = parse_amplitudes(args.amplitudes)
     scene = resolve(args.scene)
-    harmonic_motion(scene)                    # a harmonic [dynamics.top_motion], or exit 2
+    check_motions(scene, amplitudes)          # before solving: exit 2 on a bad motion
     out = out_folder(args, Path("out") / scene.name / "compare-dynamics", files)
     check_overrides(scene, args)
     if args.peer:

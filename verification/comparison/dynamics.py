@@ -39,11 +39,11 @@ import numpy as np
 
 import bvp
 import vfife
-from bvp.harmonic import solve_harmonic
+from bvp.harmonic import require_harmonic, solve_harmonic
 from riser.dynamics import Dynamics, TopMotion
 from riser.errors import SceneError, SolveFailed, UnsupportedSceneError
 from riser.response import HarmonicResponse, harmonic_motion, motion_amplitudes
-from riser.scene import Scene
+from riser.scene import FixedEnds, Scene
 from verification.pipeline import vfife_equivalent
 
 from . import harmonics
@@ -105,6 +105,21 @@ class DynamicComparison:
     @property
     def passed(self) -> bool:
         return all(r.passed for r in self.results)
+
+
+def check_motions(scene: Scene, amplitudes=None) -> tuple[str, float, list[float]]:
+    """(axis, period [s], the amplitudes [m] sorted) of the comparison, every amplitude
+    checked before anything is solved: a harmonic motion (:func:`riser.response.
+    harmonic_motion`), plausible (the top motion's own limits) and, for fixed ends, the
+    frequency domain's (the hang-off kept in the water). SceneError / UnsupportedSceneError
+    naming the key (exit 2)."""
+    axis, amp0, period = harmonic_motion(scene)
+    amps = sorted(amplitudes) if amplitudes else [amp0]
+    for a in amps:
+        scene.replace(**{"dynamics.top_motion.amplitude": a})      # its checks, its key
+        if isinstance(scene.ends, FixedEnds):
+            require_harmonic(scene, motion_amplitudes(axis, a))
+    return axis, period, amps
 
 
 def check_period(scene: Scene, period: float, element_length: float, static) -> None:
@@ -172,8 +187,7 @@ def compare_dynamics(scene: Scene, *, amplitudes=None, element_length: float | N
     comparison cannot take (no harmonic motion, a period too short, the FD refusing),
     SolveFailed when a method fails."""
     now = progress or (lambda msg: None)
-    axis, amp0, period = harmonic_motion(scene)
-    amps = sorted(amplitudes) if amplitudes else [amp0]
+    axis, period, amps = check_motions(scene, amplitudes)
     eq = vfife_equivalent(scene)
     matched = eq.scene
     notes = [f"The scene was converted: {eq.note}."] if eq.note else []
