@@ -29,11 +29,14 @@ import math
 import sys
 import time
 
+import numpy as np
+
 from riser import validity
 from riser.errors import UnsupportedSceneError
+from riser.frame import LinePlane
 from riser.internal_flow import wall_tension
 from riser.result import SolveResult, Status
-from riser.scene import HangOffAngleEnds, Scene, TdpTensionEnds, TopTensionEnds
+from riser.scene import FixedEnds, HangOffAngleEnds, Scene, TdpTensionEnds, TopTensionEnds
 from riser.sections import segment_properties
 from riser.settings import AnalyticSettings
 
@@ -115,7 +118,32 @@ def _outer(scene: Scene, line: Line, model: str):
     if isinstance(e, TopTensionEnds):
         # only the first segment's length is solved in the Wang forms: the whole line here
         return forms.top_tension(line, e.hang_off_height, e.top_tension, with_layer)
-    return forms.fixed(line, e.anchor, e.hang_off, scene.seabed is not None, with_layer)
+    # in the plane of the ends (a hang-off out of the anchor's plane: the same planar
+    # problem over the horizontal distance, mapped back by :func:`_to_scene`)
+    (xa, ya, za), (xh, yh, zh) = e.anchor_point, e.hang_off_point
+    return forms.fixed(line, (xa, ya), (xa + math.hypot(xh - xa, zh - za), yh),
+                       scene.seabed is not None, with_layer)
+
+
+def _to_scene(scene: Scene, profile) -> None:
+    """A profile solved in the plane of fixed ends (x along it from the anchor's x) put
+    into the scene's axes: x, z rotated by the plane's heading; a 3D scene's profile gets
+    its 3D columns (on its plane: no lateral offset, no out-of-plane moment, the in-plane
+    moment the signed planar one)."""
+    e = scene.ends
+    if not isinstance(e, FixedEnds):
+        return
+    plane = LinePlane.of(scene)
+    if plane.heading_deg == 0.0:                  # the x-y plane (shifted by z): x as solved
+        profile.z = np.full_like(profile.s, e.anchor_point[2])
+    else:
+        xi = profile.x - e.anchor_point[0]
+        profile.x, profile.z = plane.from_plane(xi, np.zeros_like(xi))
+    if not scene.statics_planar:
+        kappa = np.gradient(np.unwrap(profile.theta), profile.s)
+        profile.lateral = np.zeros_like(profile.s)
+        profile.moment_in_plane = np.where(kappa < 0.0, -profile.moment, profile.moment)
+        profile.moment_out_of_plane = np.zeros_like(profile.s)
 
 
 def solve(scene: Scene) -> SolveResult:
@@ -179,6 +207,7 @@ def _solve(scene: Scene) -> SolveResult:
     solved_first = isinstance(scene.ends, (HangOffAngleEnds, TopTensionEnds))
     total = outer.suspended if solved_first else line.length
     profile, extra = build(outer, line, model, total, threshold=threshold)
+    _to_scene(scene, profile)
     info.update(extra)
     if model == "piecewise" and extra["piecewise_s_E"] >= total:
         warnings.append(f"piecewise_threshold: curvature_threshold {threshold:g} 1/m is below "

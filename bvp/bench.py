@@ -62,6 +62,32 @@ def median_times(scenes: list[Scene], repeats: int = 3) -> dict:
     return out
 
 
+def rod_ratios(planar: list[Scene], three_d: list[Scene], repeats: int = 3) -> dict:
+    """The 3D rod's cost: on each planar scene the median time of the rod (``three_d=True``,
+    the same solution to round-off) over the planar solve's, side by side in one run; on
+    each 3D scene its median time (a scene with a current across its plane, solved only by
+    the rod)."""
+    out = {"planar": {}, "3d": {}}
+    for sc in planar:
+        _timed(sc), _timed(sc, three_d=True)
+        tp = statistics.median(_timed(sc)[0] for _ in range(repeats))
+        tr = statistics.median(_timed(sc, three_d=True)[0] for _ in range(repeats))
+        out["planar"][sc.name] = {"planar_s": tp, "rod_s": tr, "rod_over_planar": tr / tp}
+    for sc in three_d:
+        _timed(sc)
+        out["3d"][sc.name] = {"rod_s": statistics.median(_timed(sc)[0] for _ in range(repeats))}
+    return out
+
+
+def rod_lines(rec: dict) -> list[str]:
+    """Console lines of :func:`rod_ratios`."""
+    out = [f"BVP 3D rod on planar scenes (same solution): {n} {r['rod_s']:.3f} s vs planar "
+           f"{r['planar_s']:.3f} s, rod / planar = {r['rod_over_planar']:.2f}"
+           for n, r in rec["planar"].items()]
+    out += [f"BVP 3D rod: {n} {r['rod_s']:.3f} s" for n, r in rec["3d"].items()]
+    return out
+
+
 # ------------------------------------------------------------ cost against the segment count
 def split_segments(scene: Scene, count: int) -> Scene:
     """The same line in ``count`` segments (at least its own number): each segment cut into

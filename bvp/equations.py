@@ -105,6 +105,9 @@ class BeamModel:
     zone_layout: Layout | None = None
     cut: int = 0
 
+    #: states per block (the 3D rod, bvp/rod_equations.py, has 10)
+    block = NSTATE
+
     def __post_init__(self) -> None:
         self.EI = np.asarray(self.EI, float)
         self.lengths = np.asarray(self.lengths, float)
@@ -126,7 +129,7 @@ class BeamModel:
 
     @property
     def n_state(self) -> int:
-        return NSTATE * self.n_block
+        return self.block * self.n_block
 
     @property
     def extensible(self) -> bool:
@@ -227,6 +230,10 @@ class BeamModel:
         return self.drag_factor * self.speed(y), self.drag_factor * self.speed_gradient(y)
 
     @property
+    def has_current(self) -> bool:
+        return self.speed is not None
+
+    @property
     def has_drag(self) -> bool:
         return self.speed is not None and self.drag_factor != 0.0
 
@@ -300,24 +307,26 @@ class BeamModel:
 
     # ------------------------------------------------------------------ scaled, for solve_bvp
     def rhs(self, tau: np.ndarray, Y: np.ndarray, p: np.ndarray) -> np.ndarray:
-        """dY/dtau of the scaled state; Y has shape (6 blocks, m)."""
+        """dY/dtau of the scaled state; Y has shape (``block`` x blocks, m)."""
         sc = self.scale[:, None]
         out = np.empty_like(Y)
+        n = self.block
         for b, (C, _, linear) in enumerate(self.coefficients(tau, p)):
-            rows = slice(b * NSTATE, (b + 1) * NSTATE)
+            rows = slice(b * n, (b + 1) * n)
             out[rows] = self.terms(Y[rows] * sc, C, linear) / sc
         return out
 
     def jac(self, tau: np.ndarray, Y: np.ndarray, p: np.ndarray):
-        """(d rhs/dY, d rhs/dp) with shapes (6b, 6b, m) and (6b, k, m) (None without
-        parameters); the blocks do not interact, so d rhs/dY is block diagonal."""
+        """(d rhs/dY, d rhs/dp) with shapes (nb, nb, m) and (nb, k, m) (n = ``block``
+        states a block; None without parameters); the blocks do not interact, so d rhs/dY
+        is block diagonal."""
         sc = self.scale
-        nb, m = self.n_block, Y.shape[1]
-        full = np.zeros((nb * NSTATE, nb * NSTATE, m))
-        dp = np.zeros((nb * NSTATE, 1, m)) if self.free_first_length else None
+        n, nb, m = self.block, self.n_block, Y.shape[1]
+        full = np.zeros((nb * n, nb * n, m))
+        dp = np.zeros((nb * n, 1, m)) if self.free_first_length else None
         ratio = (sc[None, :] / sc[:, None])[:, :, None]      # J_ij sc_j / sc_i
         for b, (C, dC, linear) in enumerate(self.coefficients(tau, p)):
-            rows = slice(b * NSTATE, (b + 1) * NSTATE)
+            rows = slice(b * n, (b + 1) * n)
             u = Y[rows] * sc[:, None]
             full[rows, rows] = self.terms_jac(u, C, linear) * ratio
             if dp is not None:

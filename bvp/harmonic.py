@@ -179,8 +179,7 @@ def _fields(scene: Scene, pieces: list[Piece], s: np.ndarray, which: np.ndarray)
             csb[sel] = 2.0 * zeta * math.sqrt(pc.k * (pc.m + pc.ma))
     cur = scene.current
     if cur is not None:
-        sign = float(cur.direction[0])
-        V, Vp = sign * cur.speed(y), sign * cur.speed_gradient(y)
+        V, Vp = cur.velocity(y)[0], cur.velocity_gradient(y)[0]     # in plane: x
     else:
         V, Vp = np.zeros(s.size), np.zeros(s.size)
     vn0, vt0 = -V * np.sin(theta), V * np.cos(theta)

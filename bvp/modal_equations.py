@@ -180,11 +180,12 @@ def require_linearisable(scene: Scene, who: str) -> None:
             f"{src}: ends: {who} need(s) fixed ends (anchor + hang_off), the scene gives the "
             f"'{scene.ends.kind}' form (convert it with "
             "verification.pipeline.vfife_equivalent)")
-    if scene.current is not None and not scene.current.is_planar:
+    why = scene.out_of_plane(statics=True)
+    if why is not None:
         raise UnsupportedSceneError(
-            f"{src}: environment.current.heading_deg: {scene.current.heading_deg:g} deg is "
-            f"out of plane: the static state is not planar, {who} linearise(s) about a "
-            "planar one")
+            f"{src}: {why[0]}: {why[1]}: the static state is not planar, {who} "
+            "linearise(s) about a planar one (a 3D static state has no modal analysis "
+            "or frequency domain here; the VFIFE's time domain solves it)")
     if scene.seabed_model == "rigid":
         raise UnsupportedSceneError(
             f"{src}: model.seabed: 'rigid' has no linear stiffness (a touchdown point); "
@@ -213,10 +214,8 @@ def build_pieces(scene: Scene, profile: Profile, dead_drag: bool = False) -> lis
     speed = None
     cur = scene.current
     if dead_drag and cur is not None and cur.max_abs_speed > 0.0:
-        sign = math.cos(math.radians(cur.heading_deg))           # +1 or -1 (planar)
-
-        def speed(y):
-            return sign * cur.speed(y)
+        def speed(y):                     # the x component (in plane)
+            return cur.velocity(y)[0]
     extensible = scene.axial_model == "extensible"
     k = scene.seabed.stiffness if scene.seabed_model == "elastic" else 0.0
     s_all = profile.s

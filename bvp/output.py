@@ -10,7 +10,7 @@ from scipy.optimize import brentq
 
 from riser.profile import Profile
 
-from .equations import IF, IM, IT, ITH, IX, IY, NSTATE, BeamModel
+from .equations import IF, IM, IT, ITH, IX, IY, BeamModel
 from .guess import BVPFailure, touchdown_beyond_first
 
 
@@ -79,51 +79,84 @@ def build_profile(prob, sol, water_depth: float | None) -> tuple[Profile, dict]:
     p = sol.p if sol.p is not None else np.zeros(0)
     parts = pieces(model, p)
     EI = model.EI
-    Tpeak = max(abs(float(np.max(sol.y[IT::NSTATE]))) * model.scale[IT], 1.0)
-    step = float(np.clip(float(np.min(np.sqrt(EI / Tpeak))) / 8.0, 0.05, 0.5))
     cols = {k: [] for k in ("s", "x", "y", "theta", "M", "F", "T", "kappa")}
     strain = 0.0
     grounded = prob.first_total - parts[0]["s1"] if prob.form == "fixed_seabed" else 0.0
-    for i, pc in enumerate(parts):
-        t0, t1, k, lay = pc["t0"], pc["t1"], pc["seg"], pc["layout"]
-        nodes = sol.x[(sol.x > t0) & (sol.x < t1)]
-        nodes = nodes[~lay.in_gap(nodes)]
-        m = max(20, int(math.ceil((pc["s1"] - pc["s0"]) / step)))
-        # the joints inside a piece of merged identical segments are stations too
-        inner = prob.joints[(prob.joints > grounded + pc["s0"]) & (prob.joints < grounded + pc["s1"])]
-        tau = np.union1d(np.linspace(t0, t1, m + 1),
-                         np.concatenate([nodes, t0 + (inner - grounded - pc["s0"])
-                                         / (pc["s1"] - pc["s0"]) * (t1 - t0)]))
-        if i > 0:
-            tau = tau[1:]
-        rows = slice(pc["block"] * NSTATE, (pc["block"] + 1) * NSTATE)
-        tau = _with_moment_peaks(lay, sol, tau, rows)
-        Y = _state(lay, sol, tau)[rows] * model.scale[:, None]
-        cols["s"].append(grounded + pc["s0"] + (pc["s1"] - pc["s0"]) * (tau - t0) / (t1 - t0))
+    for pc, s, Y in stations(prob, sol, parts, grounded, _with_moment_peaks):
+        k = pc["seg"]
+        cols["s"].append(s)
         for key, j in (("x", IX), ("y", IY), ("theta", ITH), ("M", IM), ("F", IF), ("T", IT)):
             cols[key].append(Y[j])
         cols["kappa"].append(Y[IM] / EI[k])
         strain = max(strain, float(np.max(np.abs(Y[IT]))) * float(model.inv_EA[k]))
     c = {k: np.concatenate(v) for k, v in cols.items()}
-    tdp_s = None
     checks: dict = {"max_strain": strain}
-    if prob.form in ("tdp_tension", "hang_off_angle", "top_tension", "fixed_seabed",
-                     "fixed_lifted"):
-        tdp_s = grounded
-    if prob.form == "fixed_lifted":
-        checks["lifted_off_anchor"] = True
-        if c["theta"][0] < -1e-6:
-            # too long for a line hanging free from the anchor (a line too long for the
-            # span altogether is refused before solving: bvp.strategy.hopeless_span)
-            raise BVPFailure(
-                "the line would leave the anchor downwards, into the rigid seabed (angle "
-                f"{math.degrees(c['theta'][0]):.2f} deg): "
-                + touchdown_beyond_first(prob.first_total))
     if prob.form == "fixed_seabed" and grounded > 0.0:
         c = _with_grounded_part(prob, model, c, grounded)
     # drop stations closer than 1 um
     keep = np.concatenate([[True], np.diff(c["s"]) > 1e-6])
     c = {k: v[keep] for k, v in c.items()}
+    tdp_s = contact_checks(prob, sol, c, grounded, c["theta"][0], checks)
+    prof = Profile(s=c["s"], x=c["x"], y=c["y"], z=np.zeros_like(c["s"]), theta=c["theta"],
+                   tension=c["T"], moment=np.abs(c["M"]), shear=np.abs(c["F"]),
+                   curvature=np.abs(c["kappa"]), tdp_s=tdp_s)
+    if not prof.is_finite():
+        raise BVPFailure("solution contains NaN or inf")
+    # independent self-checks of the converged solution
+    checks["equilibrium_residual"] = equilibrium_residual(model, parts, grounded, c)
+    height_checks(prob, c, tdp_s, water_depth, checks)
+    return prof, checks
+
+
+def stations(prob, sol, parts: list, grounded: float, peaks):
+    """(piece, s [m], the SI state (block, k)) at the profile's stations of each piece
+    (bvp.output.pieces): every sqrt(EI/T_peak)/8 (0.05-0.5 m), the collocation nodes (but
+    the joints' node pairs) and the joints of merged segments, and the extrema the
+    function ``peaks(layout, sol, tau, rows) -> tau`` adds; s from the bottom end,
+    ``grounded`` [m] ahead of the solved line (the rigid form's straight part)."""
+    model = prob.model
+    n = prob.block
+    Tpeak = max(abs(float(np.max(sol.y[IT::n]))) * model.scale[IT], 1.0)
+    step = float(np.clip(float(np.min(np.sqrt(model.EI / Tpeak))) / 8.0, 0.05, 0.5))
+    for i, pc in enumerate(parts):
+        t0, t1, lay = pc["t0"], pc["t1"], pc["layout"]
+        nodes = sol.x[(sol.x > t0) & (sol.x < t1)]
+        nodes = nodes[~lay.in_gap(nodes)]
+        m = max(20, int(math.ceil((pc["s1"] - pc["s0"]) / step)))
+        # the joints inside a piece of merged identical segments are stations too
+        inner = prob.joints[(prob.joints > grounded + pc["s0"])
+                            & (prob.joints < grounded + pc["s1"])]
+        tau = np.union1d(np.linspace(t0, t1, m + 1),
+                         np.concatenate([nodes, t0 + (inner - grounded - pc["s0"])
+                                         / (pc["s1"] - pc["s0"]) * (t1 - t0)]))
+        if i > 0:
+            tau = tau[1:]
+        rows = slice(pc["block"] * n, (pc["block"] + 1) * n)
+        tau = peaks(lay, sol, tau, rows)
+        Y = _state(lay, sol, tau)[rows] * model.scale[:, None]
+        yield pc, grounded + pc["s0"] + (pc["s1"] - pc["s0"]) * (tau - t0) / (t1 - t0), Y
+
+
+def contact_checks(prob, sol, c: dict, grounded: float, angle0: float, checks: dict):
+    """The touchdown (lift-off) arc length [m] of the solved form, None without one, and
+    its figures into ``checks`` (first_segment_suspended_length, grounded_length,
+    lifted_off_anchor, contact_zone_max_height); ``c`` the station columns (s, y),
+    ``angle0`` [rad] the tangent's angle from the horizontal at the bottom end. Raises
+    BVPFailure for a line that would leave a lifted anchor downwards."""
+    model = prob.model
+    p = sol.p if sol.p is not None else np.zeros(0)
+    tdp_s = None
+    if prob.form in ("tdp_tension", "hang_off_angle", "top_tension", "fixed_seabed",
+                     "fixed_lifted"):
+        tdp_s = grounded
+    if prob.form == "fixed_lifted":
+        checks["lifted_off_anchor"] = True
+        if angle0 < -1e-6:
+            # too long for a line hanging free from the anchor (a line too long for the
+            # span altogether is refused before solving: bvp.strategy.hopeless_span)
+            raise BVPFailure(
+                "the line would leave the anchor downwards, into the rigid seabed (angle "
+                f"{math.degrees(angle0):.2f} deg): " + touchdown_beyond_first(prob.first_total))
     # the part of segment 0 beyond the touchdown or lift-off point (0 when the contact
     # zone covers it); the first piece is segment 0 alone in the forms that solve for it
     checks["first_segment_suspended_length"] = (
@@ -136,17 +169,17 @@ def build_profile(prob, sol, water_depth: float | None) -> tuple[Profile, dict]:
         tdp_s = lift_off(prob, sol, p, c)
     if prob.form == "fixed_liftoff":
         tdp_s = model.zone_length(p)
-        zone = c["s"] <= tdp_s
-        checks["contact_zone_max_height"] = float(np.max(c["y"][zone]))
+        checks["contact_zone_max_height"] = float(np.max(c["y"][c["s"] <= tdp_s]))
     if tdp_s is not None and prob.form in ("fixed_elastic", "fixed_liftoff"):
         checks["grounded_length"] = float(tdp_s)
-    prof = Profile(s=c["s"], x=c["x"], y=c["y"], z=np.zeros_like(c["s"]), theta=c["theta"],
-                   tension=c["T"], moment=np.abs(c["M"]), shear=np.abs(c["F"]),
-                   curvature=np.abs(c["kappa"]), tdp_s=tdp_s)
-    if not prof.is_finite():
-        raise BVPFailure("solution contains NaN or inf")
-    # independent self-checks of the converged solution
-    checks["equilibrium_residual"] = equilibrium_residual(model, parts, grounded, c)
+    return tdp_s
+
+
+def height_checks(prob, c: dict, tdp_s, water_depth: float | None, checks: dict) -> None:
+    """The self-checks of the solved heights: a rigid-seabed form's suspended line above
+    the seabed (``min_suspended_height`` into ``checks``), the line below the surface, and
+    the global force balance (``checks['equilibrium_residual']``, set by the caller);
+    raises BVPFailure with the reason."""
     if tdp_s is not None and prob.form not in ("fixed_elastic", "fixed_liftoff"):
         susp = c["s"] > tdp_s + 1e-9
         ymin = float(np.min(c["y"][susp])) if np.any(susp) else 0.0
@@ -165,7 +198,6 @@ def build_profile(prob, sol, water_depth: float | None) -> tuple[Profile, dict]:
     if checks["equilibrium_residual"] > 1e-3:
         raise BVPFailure(f"global force balance violated: residual "
                          f"{checks['equilibrium_residual']:.2e} of the max tension")
-    return prof, checks
 
 
 def _with_grounded_part(prob, model: BeamModel, c: dict, grounded: float) -> dict:

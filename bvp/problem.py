@@ -51,6 +51,8 @@ class _Problem:
     guess: object = None               # callable(tau) -> scaled state (6 blocks, m)
     joints: np.ndarray = None          # s [m] of the scene's joints (merged ones included)
     segments: int = 1                  # the scene's segment count
+    block: int = NSTATE                # states per block (10: the 3D rod, bvp/rod_problem.py)
+    plane: object = None               # the 3D rod's riser.frame.LinePlane (None: planar)
 
     def mesh(self, nodes: int) -> np.ndarray:
         """The starting mesh on tau (bvp.layout.Layout.mesh) for ``nodes`` on the line."""
@@ -84,10 +86,9 @@ def build_problem(scene: Scene, split: bool = True) -> _Problem:
     n = len(groups)
     speed = grad = None
     if scene.current is not None:
-        sign = math.cos(math.radians(scene.current.heading_deg))   # +1 or -1 (planar)
-        cur = scene.current
-        speed = lambda y: sign * cur.speed(y)                     # noqa: E731
-        grad = lambda y: sign * cur.speed_gradient(y)             # noqa: E731
+        cur = scene.current            # its x component (in plane: heading 0 or 180 deg)
+        speed = lambda y: cur.velocity(y)[0]                      # noqa: E731
+        grad = lambda y: cur.velocity_gradient(y)[0]              # noqa: E731
 
     length_scale = float(np.sum(L))
     k_seabed = scene.seabed.stiffness if scene.seabed_model == "elastic" else 0.0

@@ -28,8 +28,13 @@ The model (``bvp/equations.py``) is chosen by the scene: ``scene.axial_model``
 
 Unknown T(0) is simply a free state value. The line is one block of six states over one
 domain with its joints as mesh points (bvp/layout.py, bvp/problem.py), so the cost does
-not grow with the number of segments beyond the mesh the physics needs. Current drag is
-planar only.
+not grow with the number of segments beyond the mesh the physics needs.
+
+A 3D scene (a hang-off out of the anchor's plane, a current at any heading or turning with
+depth) is solved as the 3D rod of bvp/rod_equations.py in the plane of its ends
+(bvp/rod_problem.py): ten states a block, the same forms with z, the tilt phi and the
+out-of-plane moment M2 added to their conditions, the same continuations plus one from the
+loads in the plane to the full ones (bvp/strategy.py).
 """
 
 from __future__ import annotations
@@ -43,11 +48,13 @@ from riser.internal_flow import wall_tension
 from riser.result import SolveResult, Status
 from riser.scene import FixedEnds, HangOffAngleEnds, Scene, TopTensionEnds
 
-from .budget import over_budget
+from .budget import over_budget, peak_bytes
 from .equations import IY
 from .guess import BVPFailure, NoEquilibrium
 from .output import build_profile
 from .problem import _Problem, build_problem
+from .rod_output import build_rod_profile
+from .rod_problem import build_rod_problem, in_plane_scene, rigid_grounded_across
 from .strategy import (
     good,
     hopeless_span,
@@ -74,21 +81,36 @@ def effects_of(scene: Scene) -> list[str]:
 
 
 def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None = None,
-          initial_nodes: int | None = None, continuation: bool = True) -> SolveResult:
+          initial_nodes: int | None = None, continuation: bool = True,
+          three_d: bool | None = None, dead_load=None) -> SolveResult:
     """Solve the static configuration of ``scene`` (see module docstring for the ends).
 
+    A 3D scene (``scene.statics_planar`` False: a hang-off out of the anchor's plane, a
+    current out of the x-y plane) is solved as the 3D rod (bvp/rod_equations.py); ``three_d``
+    True solves a planar scene that way too (the rod reduces to the planar equations),
+    False refuses a 3D scene. ``dead_load``: a uniform load (qx, qy, qz) [N/m] per
+    unstretched length in the scene's axes, added to the weight (closed-form checks; the
+    rod).
+
     Never raises on non-convergence: the result has a :class:`~riser.result.Status` other
-    than converged and a message saying why; a scene the method cannot represent
-    (out-of-plane current, a slug in the internal flow, a second touchdown, a problem
-    whose solve could take more than [bvp] memory_budget: bvp/budget.py) is ``refused``.
+    than converged and a message saying why; a scene the method cannot represent (a slug
+    in the internal flow, a second touchdown, a problem whose solve could take more than
+    [bvp] memory_budget: bvp/budget.py, a rigid seabed's grounded line under a current
+    out of plane) is ``refused``.
     """
     t0 = time.perf_counter()
     settings = scene.bvp.override(tolerance=tolerance, max_nodes=max_nodes,
                                   initial_nodes=initial_nodes)
-    if scene.current is not None and not scene.current.is_planar:
+    why_3d = scene.out_of_plane(statics=True)
+    rod = bool(three_d) or dead_load is not None or (three_d is None and why_3d is not None)
+    if why_3d is not None and not rod:
         return SolveResult.refused("bvp", scene, (
-            f"{scene.source}: environment.current.heading_deg: {scene.current.heading_deg:g} "
-            "deg is out of plane; the bvp method is planar only (use --method vfife)"))
+            f"{scene.source}: {why_3d[0]}: {why_3d[1]}; solved in plane only "
+            "(three_d=False)"))
+    if rod:
+        refusal = rigid_grounded_across(scene)
+        if refusal:
+            return SolveResult.refused("bvp", scene, f"{scene.source}: {refusal}")
     if scene.internal_flow is not None and scene.internal_flow.has_slug:
         return SolveResult.refused("bvp", scene, (
             f"{scene.source}: internal_flow.slug: the bvp method models a steady uniform "
@@ -108,22 +130,29 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
                            effects, model=scene.continuum_model(), warnings=warnings,
                            info=info)
 
-    hopeless = hopeless_span(scene)        # give up early: no equilibrium of these forms
+    # the in-plane geometry (the rod's plane's frame) for the checks before solving
+    flat = in_plane_scene(scene)[0] if rod else xy_ends(scene)
+    info["formulation"] = ("3d rod (10 states a block, in the plane of the ends)" if rod
+                           else "planar (6 states a block)")
+    hopeless = hopeless_span(flat)         # give up early: no equilibrium of these forms
     if hopeless:
         return result(Status.NO_EQUILIBRIUM, hopeless)
     split_tried = ""
     for split in (True, False):
         try:
-            prob = build_problem(scene, split)
+            prob = (build_rod_problem(scene, split, dead_load) if rod
+                    else build_problem(flat, split))
         except BVPFailure as exc:
             return result(Status.NO_EQUILIBRIUM if isinstance(exc, NoEquilibrium)
                           else Status.NOT_CONVERGED, str(exc))
         tau0 = prob.mesh(settings.initial_nodes)
+        if rod:
+            settings = _rod_node_cap(prob, settings, info)
         too_big = over_budget(prob.model.n_state, prob.guess_p.size, prob.mesh(0).size,
                               prob.model.n_seg, settings.max_nodes, settings.memory_budget)
         if too_big:
             return SolveResult.refused("bvp", scene, f"{scene.source}: bvp refused: {too_big}")
-        early = hopeless_start(scene, prob, tau0)
+        early = hopeless_start(flat, prob, tau0)
         if early is not None and early[0] is Status.REFUSED:
             return SolveResult.refused("bvp", scene, f"{scene.source}: bvp refused: {early[1]}")
         if early is not None:
@@ -153,7 +182,10 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
     # solve_bvp's measure: the largest rms collocation residual, relative to 1 + |f|
     info["collocation_residual"] = float(np.max(sol.rms_residuals))
     try:
-        profile, checks = build_profile(prob, sol, scene.water_depth)
+        profile, checks = (build_rod_profile if rod else build_profile)(prob, sol,
+                                                                         scene.water_depth)
+        if not rod and isinstance(scene.ends, FixedEnds):
+            profile.z = np.full_like(profile.s, scene.ends.anchor_point[2])   # its plane
         if scene.internal_flow is not None:
             # steady flow: no term in the shape equations (T is Fylling's effective
             # tension), one in the wall tension (riser/internal_flow.py)
@@ -176,6 +208,31 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
         warnings.extend(warn)
     warnings.extend(validity.profile_warnings(scene, profile, lengths))
     return result(Status.CONVERGED, message, profile)
+
+
+def xy_ends(scene: Scene) -> Scene:
+    """A planar scene with its fixed ends as (x, y): ends given as (x, y, z) in one plane
+    z = const lose their z (the planar problem's; the profile gets it back)."""
+    e = scene.ends
+    if isinstance(e, FixedEnds) and (len(e.anchor) > 2 or len(e.hang_off) > 2):
+        return scene.replace(ends=FixedEnds(anchor=e.anchor[:2], hang_off=e.hang_off[:2]))
+    return scene
+
+
+def _rod_node_cap(prob: _Problem, settings, info: dict):
+    """The rod's settings with [bvp] max_nodes lowered to what fits in [bvp]
+    memory_budget (bvp/budget.py; the rod's 10 or 20 states cost (10/6)^2 to (20/6)^2 x
+    a planar node), noted in ``info``; unchanged when it fits or when even the starting
+    mesh would not (over_budget then refuses, naming the settings)."""
+    per_node = peak_bytes(prob.model.n_state, prob.guess_p.size, 1)
+    fits = int(settings.memory_budget * 1e9 / per_node)
+    if fits >= settings.max_nodes or fits < 4 * prob.mesh(0).size:
+        return settings
+    info["max_nodes_capped"] = (f"[bvp] max_nodes {settings.max_nodes:,} lowered to {fits:,} "
+                                f"for the 3D rod ({prob.model.n_state} states, "
+                                f"{per_node / 1e3:.3g} kB a node) to stay within [bvp] "
+                                f"memory_budget = {settings.memory_budget:g} GB")
+    return settings.replace(max_nodes=fits)
 
 
 def _second_contact(prob: _Problem, tau: np.ndarray) -> str:

@@ -18,7 +18,7 @@ from riser.scene import FixedEnds, Scene, TopTensionEnds
 from riser.sections import segment_properties
 from riser.settings import BVPSettings
 
-from .equations import IT, IY, NSTATE, LiftOffOutside
+from .equations import IT, IY, LiftOffOutside
 from .guess import (
     fold_back,
     metres,
@@ -82,7 +82,8 @@ def solve_with_continuation(prob, tau0: np.ndarray, settings: BVPSettings,
                      f"tolerance {settings.tolerance:g}; raise [bvp] max_nodes"), fail
     if not continuation:
         return sol, "cold start only", fail
-    walks = [w for w in (_load_factor(prob.model), _seabed_stiffness(prob)) if w is not None]
+    walks = [w for w in (_cross_loads(prob.model), _load_factor(prob.model),
+                         _seabed_stiffness(prob)) if w is not None]
     if not walks:
         return sol, "cold start (no continuation parameter)", fail
     tried = []
@@ -99,7 +100,7 @@ def _load_factor(model):
     """(name, set_lam, where, largest step) of the continuation in current and buoyancy
     (``where(lam)`` says how far it went), None without either."""
     w_target = model.w.copy()
-    if model.speed is None and not np.any(w_target < 0):
+    if not model.has_current and not np.any(w_target < 0):
         return None
 
     def set_lam(lam):
@@ -107,6 +108,20 @@ def _load_factor(model):
         model.w = np.where(w_target < 0, lam * w_target, w_target)
 
     return "current/buoyancy", set_lam, lambda lam: f"load factor {lam:.3f}", 0.5
+
+
+def _cross_loads(model):
+    """(name, set_lam, where, largest step) of the continuation of the 3D rod
+    (bvp/rod_equations.py) from its loads in the plane (the in-plane current: a planar
+    problem) to the full ones, lam scaling the current and dead load across the plane;
+    None for a planar model or one with nothing across its plane."""
+    if not getattr(model, "cross_loads", False):
+        return None
+
+    def set_lam(lam):
+        model.cross_factor = lam
+
+    return "cross loads", set_lam, lambda lam: f"cross-load factor {lam:.3f}", 0.5
 
 
 #: decades of seabed stiffness the continuation climbs after the first step from none
@@ -157,8 +172,8 @@ def _walk(prob, tau0, Y0, trial, settings, name, set_lam, where, max_step):
         step /= 2.0
         if step < 1.0 / 128:
             set_lam(1.0)
-            Tmin = float(np.min(last.y[IT::NSTATE])) * model.scale[IT]
-            Tmax = float(np.max(last.y[IT::NSTATE])) * model.scale[IT]
+            Tmin = float(np.min(last.y[IT::model.block])) * model.scale[IT]
+            Tmax = float(np.max(last.y[IT::model.block])) * model.scale[IT]
             why = (f"minimum tension there {Tmin / 1e3:.3g} kN of max {Tmax / 1e3:.3g} kN")
             if Tmin < 0.05 * Tmax and name == "current/buoyancy":
                 why += (": the tension tends to zero, so probably no static equilibrium "
@@ -255,7 +270,7 @@ def hopeless_start(scene: Scene, prob, tau: np.ndarray) -> tuple[Status, str] | 
       vfife`` finds).
     """
     m = prob.model
-    y = prob.guess(tau)[IY::NSTATE] * m.scale[IY]          # (blocks, nodes) [m]
+    y = prob.guess(tau)[IY::m.block] * m.scale[IY]         # (blocks, nodes) [m]
     S = m.s_of(tau, prob.guess_p)                           # their arc lengths [m]
     if prob.form == "fixed_free":
         # a line no seabed could hold either (too long for the span); a shorter one that
@@ -300,7 +315,7 @@ def second_contact(prob, tau: np.ndarray, y: np.ndarray | None = None) -> tuple[
     (0, nan) if none. ``y``: the guess's heights (blocks, nodes) [m] if already sampled."""
     m = prob.model
     if y is None:
-        y = prob.guess(tau)[IY::NSTATE] * m.scale[IY]
+        y = prob.guess(tau)[IY::m.block] * m.scale[IY]
     S = m.s_of(tau, prob.guess_p)
     first_end = m.zone_length(prob.guess_p) + m.piece_lengths(prob.guess_p)[0]
     beyond = S > first_end + 1e-9 * m.length_scale

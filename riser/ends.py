@@ -10,6 +10,7 @@ Coordinates [m]: x from the anchor/touchdown towards the hang-off, y up from the
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any, ClassVar
 
@@ -76,25 +77,27 @@ class TopTensionEnds(Ends):
 
 @dataclass(frozen=True)
 class FixedEnds(Ends):
-    """Anchor and hang-off positions (x, y) [m] given."""
+    """Anchor and hang-off positions [m] given: (x, y) in the x-y plane, or (x, y, z) for
+    a line whose hang-off is out of the anchor's plane (z out of plane; two entries mean
+    z = 0). The line's plane is the vertical plane through the two ends
+    (:attr:`plane_heading_deg`)."""
 
     kind: ClassVar[str] = "fixed"
-    anchor: tuple[float, float] = spec(kind="numbers", length=2, ge=-MAX_COORDINATE,
+    anchor: tuple[float, ...] = spec(kind="numbers", length=(2, 3), ge=-MAX_COORDINATE,
+                                     le=MAX_COORDINATE, unit="m",
+                                     also="y >= 0, <= water_depth; with a "
+                                          "[seabed], a y within 5 % of the bottom line's "
+                                          "outer diameter is put on it (y = 0)",
+                                     doc="(x, y) or (x, y, z) of the bottom end")
+    hang_off: tuple[float, ...] = spec(kind="numbers", length=(2, 3), ge=-MAX_COORDINATE,
                                        le=MAX_COORDINATE, unit="m",
-                                       also="y >= 0, <= water_depth; with a [seabed], a y "
-                                            "within 5 % of the bottom line's outer diameter is "
-                                            "put on it "
-                                            "(y = 0)",
-                                       doc="(x, y) of the bottom end")
-    hang_off: tuple[float, float] = spec(kind="numbers", length=2, ge=-MAX_COORDINATE,
-                                         le=MAX_COORDINATE, unit="m",
-                                         also="x > anchor x, 0 < y <= water_depth",
-                                         doc="(x, y) of the top end")
+                                       also="x > anchor x, 0 < y <= water_depth",
+                                       doc="(x, y) or (x, y, z) of the top end")
 
     def __post_init__(self) -> None:
         check_fields(self)
         error = part_error(self)
-        (xa, ya), (xh, yh) = self.anchor, self.hang_off
+        (xa, ya, _), (xh, yh, _) = self.anchor_point, self.hang_off_point
         if ya < 0.0:
             raise error("anchor[1]", f"must be >= 0 (the seabed is y = 0), got {ya:g}")
         if yh <= 0.0:
@@ -103,6 +106,33 @@ class FixedEnds(Ends):
         if xh <= xa:
             raise error("hang_off[0]", f"must be > anchor[0] = {xa:g} (x points from the "
                         f"anchor towards the hang-off), got {xh:g}")
+
+    @property
+    def anchor_point(self) -> tuple[float, float, float]:
+        """(x, y, z) of the anchor [m] (z = 0 when the scene gives (x, y))."""
+        return _point(self.anchor)
+
+    @property
+    def hang_off_point(self) -> tuple[float, float, float]:
+        """(x, y, z) of the hang-off [m] (z = 0 when the scene gives (x, y))."""
+        return _point(self.hang_off)
+
+    @property
+    def in_plane(self) -> bool:
+        """True when both ends lie in one plane z = const (the x-y plane, shifted)."""
+        return self.anchor_point[2] == self.hang_off_point[2]
+
+    @property
+    def plane_heading_deg(self) -> float:
+        """Heading of the line's plane [deg]: the direction from the anchor to the hang-off
+        in the horizontal plane, from +x towards +z (0 for ends in one plane z = const;
+        within (-90, 90) since x points towards the hang-off)."""
+        (xa, _, za), (xh, _, zh) = self.anchor_point, self.hang_off_point
+        return math.degrees(math.atan2(zh - za, xh - xa))
+
+
+def _point(p) -> tuple[float, float, float]:
+    return (float(p[0]), float(p[1]), float(p[2]) if len(p) > 2 else 0.0)
 
 
 #: the end forms, in the order of the key tables

@@ -5,7 +5,12 @@ Conventions: s [m] from the bottom end (anchor or touchdown) to the hang-off; x,
 angle from the horizontal; ``tension`` the effective tension [N]; ``moment`` the bending
 moment magnitude [N m]; ``shear`` the shear force magnitude [N]; ``curvature`` [1/m];
 ``wall_tension`` [N] the pipe wall's tension, only for a scene with [internal_flow] (see
-:mod:`riser.internal_flow`; the ``wall_tension`` column of profile.csv).
+:mod:`riser.internal_flow`; the ``wall_tension`` column of profile.csv). A 3D scene's
+profile (``Scene.is_planar`` False) carries ``lateral`` [m], the signed offset from the
+line's plane (the vertical plane through the anchor and the hang-off), and the bending
+moment's two components across the tangent, ``moment_in_plane`` [N m] (signed as the
+planar moment) and ``moment_out_of_plane`` [N m] (the moment that bends the line out of
+that plane) (:mod:`riser.frame`; the profile.csv columns of the same names).
 """
 
 from __future__ import annotations
@@ -19,6 +24,8 @@ from pathlib import Path
 import numpy as np
 
 PROFILE_COLUMNS = ("s", "x", "y", "z", "tension", "moment", "shear", "curvature", "angle_deg")
+#: the columns a profile carries only where they apply, after PROFILE_COLUMNS in this order
+OPTIONAL_COLUMNS = ("wall_tension", "lateral", "moment_in_plane", "moment_out_of_plane")
 
 
 @dataclass
@@ -40,12 +47,21 @@ class Profile:
     curvature: np.ndarray
     tdp_s: float | None = None
     wall_tension: np.ndarray | None = None
+    lateral: np.ndarray | None = None
+    moment_in_plane: np.ndarray | None = None
+    moment_out_of_plane: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         for name in ("s", "x", "y", "z", "theta", "tension", "moment", "shear", "curvature"):
             setattr(self, name, np.asarray(getattr(self, name), dtype=float))
-        if self.wall_tension is not None:
-            self.wall_tension = np.asarray(self.wall_tension, dtype=float)
+        for name in OPTIONAL_COLUMNS:
+            if getattr(self, name) is not None:
+                setattr(self, name, np.asarray(getattr(self, name), dtype=float))
+
+    @property
+    def is_3d(self) -> bool:
+        """True for the profile of a 3D scene (it carries the lateral offset)."""
+        return self.lateral is not None
 
     def is_finite(self) -> bool:
         return all(np.all(np.isfinite(getattr(self, n))) for n in
@@ -57,9 +73,10 @@ class Profile:
             cols = [self.s, self.x, self.y, self.z, self.tension, self.moment, self.shear,
                     self.curvature, np.degrees(self.theta)]
             names = list(PROFILE_COLUMNS)
-            if self.wall_tension is not None:
-                names.append("wall_tension")
-                cols.append(self.wall_tension)
+            for name in OPTIONAL_COLUMNS:
+                if getattr(self, name) is not None:
+                    names.append(name)
+                    cols.append(getattr(self, name))
             w.writerow(names)
             for row in zip(*cols):
                 w.writerow([f"{v:.10g}" for v in row])
@@ -91,10 +108,12 @@ def waves(profile: Profile, min_prominence: float | None = None) -> tuple[list[d
     Only the part above the touchdown point is searched, end points excluded. Extrema
     whose height differs from the neighbouring extremum by less than ``min_prominence``
     [m] (default 1e-4 of the height range) are dropped as noise. Each entry is
-    ``{"s", "x", "height"}`` with the vertex refined by a parabola through three samples.
+    ``{"s", "x", "height"}`` with the vertex refined by a parabola through three samples
+    (and ``lateral``, the offset from the line's plane there, on a 3D profile).
     """
     keep = np.concatenate([[True], np.diff(profile.s) > 0.0])     # ignore repeated stations
     s, x, y = profile.s[keep], profile.x[keep], profile.y[keep]
+    lat = profile.lateral[keep] if profile.lateral is not None else None
     start = 0
     if profile.tdp_s is not None:
         start = int(np.searchsorted(s, profile.tdp_s + 1e-9))
@@ -134,6 +153,8 @@ def waves(profile: Profile, min_prominence: float | None = None) -> tuple[list[d
     for i, kind in cand:
         sv, yv = _parabolic_peak(s, y, i)
         item = {"s": sv, "x": float(np.interp(sv, s, x)), "height": yv}
+        if lat is not None:
+            item["lateral"] = float(np.interp(sv, s, lat))
         (crests if kind == "max" else sags).append(item)
     return crests, sags
 
@@ -177,6 +198,27 @@ def summarize(profile: Profile) -> dict:
     if profile.wall_tension is not None:
         out["hang_off_wall_tension"] = float(profile.wall_tension[-1])
         out["max_wall_tension"] = float(np.max(profile.wall_tension))
+    if profile.is_3d:
+        out.update(lateral_summary(profile))
+    return out
+
+
+def lateral_summary(profile: Profile) -> dict:
+    """The 3D figures of a profile: the largest lateral excursion from the line's plane
+    (signed, [m]) and its arc length, the lateral offset at the touchdown, the largest
+    out-of-plane bending moment magnitude [N m] and its arc length."""
+    s, lat = profile.s, profile.lateral
+    i = int(np.argmax(np.abs(lat)))
+    sv, v = _parabolic_peak(s, np.abs(lat), i)
+    out = {"max_lateral_offset": float(np.copysign(max(v, abs(lat[i])), lat[i])),
+           "max_lateral_offset_s": sv,
+           "tdp_lateral": (None if profile.tdp_s is None
+                           else float(np.interp(profile.tdp_s, s, lat)))}
+    m = np.abs(profile.moment_out_of_plane)
+    j = int(np.argmax(m))
+    sm, vm = _parabolic_peak(s, m, j)
+    out.update({"max_moment_out_of_plane": max(vm, float(m[j])),
+                "max_moment_out_of_plane_s": sm})
     return out
 
 

@@ -188,7 +188,7 @@ class Scene:
                 and 0.0 < e.anchor[1] <= self.anchor_snap_tolerance):
             return
         object.__setattr__(self, "_anchor_given", float(e.anchor[1]))
-        object.__setattr__(self, "ends", FixedEnds(anchor=(e.anchor[0], 0.0),
+        object.__setattr__(self, "ends", FixedEnds(anchor=(e.anchor[0], 0.0, *e.anchor[2:]),
                                                    hang_off=e.hang_off))
 
     @property
@@ -273,7 +273,7 @@ class Scene:
         e, depth, length = self.ends, self.water_depth, self.total_length
         surface = None if depth is None else depth * (1.0 + SURFACE_ROUND_OFF)
         if isinstance(e, FixedEnds):
-            chord = math.hypot(e.hang_off[0] - e.anchor[0], e.hang_off[1] - e.anchor[1])
+            chord = math.dist(e.anchor_point, e.hang_off_point)
             # an extensible line no longer than the chord is taut (it stretches); only the
             # inextensible model cannot reach
             if self.axial_model == "inextensible" and length <= chord:
@@ -328,10 +328,37 @@ class Scene:
 
     @property
     def is_planar(self) -> bool:
-        """True when nothing drives out-of-plane motion."""
-        return (self.current is None or self.current.is_planar) and (
-            self.dynamics is None or self.dynamics.top_motion is None
-            or self.dynamics.top_motion.axis != "z")
+        """True when nothing drives out-of-plane motion: the ends in one plane z = const,
+        the current in the x-y plane at every height, no top motion along z."""
+        return self.out_of_plane() is None
+
+    @property
+    def statics_planar(self) -> bool:
+        """True when the static equilibrium lies in one vertical plane: the ends in one
+        plane z = const and the current in the x-y plane (a top motion along z moves a
+        planar static state out of its plane: the dynamics are 3D, the statics not)."""
+        return self.out_of_plane(statics=True) is None
+
+    def out_of_plane(self, statics: bool = False) -> tuple[str, str] | None:
+        """(key, reason) of the first input that makes the scene 3D (a hang-off out of the
+        anchor's plane, a current out of the x-y plane, a top motion along z; with
+        ``statics``, the first that makes its static state 3D), or None for a planar
+        scene."""
+        e, cur = self.ends, self.current
+        if isinstance(e, FixedEnds) and not e.in_plane:
+            return ("ends.hang_off", f"the hang-off is at z = {e.hang_off_point[2]:g} m, the "
+                    f"anchor at z = {e.anchor_point[2]:g} m: out of the anchor's plane")
+        if cur is not None and not cur.is_planar:
+            if cur.turns:
+                return ("environment.current.headings_deg", "the current turns out of the "
+                        "x-y plane (headings " + ", ".join(f"{h:g}" for h in cur.headings)
+                        + " deg)")
+            return ("environment.current.heading_deg", f"the current's heading "
+                    f"{cur.heading_deg:g} deg is out of the x-y plane")
+        tm = None if self.dynamics is None else self.dynamics.top_motion
+        if tm is not None and tm.axis == "z" and not statics:
+            return ("dynamics.top_motion.axis", "the hang-off moves along z, out of plane")
+        return None
 
     def replace(self, **changes: Any) -> Scene:
         """A checked copy with some fields changed (Scene is immutable).

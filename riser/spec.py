@@ -48,7 +48,8 @@ class Spec:
     doc : one line of meaning, for the key tables.
     choices : the allowed strings ('string', and each entry of 'strings').
     pattern : a regular expression a 'string' must match in full.
-    length, min_length : the exact / least number of entries of 'numbers'.
+    length, min_length : the exact number of entries of 'numbers' (or a tuple of the
+        allowed numbers) / the least number.
     optional : None is accepted (the field's default is None).
     table : the sub-table of the part's table holding the key ('expert', 'slug',
         'environment' for the scene's environment fields), '' for the part's own table.
@@ -68,7 +69,7 @@ class Spec:
     doc: str = ""
     choices: tuple[str, ...] | None = None
     pattern: str | None = None
-    length: int | None = None
+    length: int | tuple[int, ...] | None = None
     min_length: int = 1
     optional: bool = False
     table: str = ""
@@ -211,8 +212,10 @@ def _quoted(choices) -> str:
 def _check_numbers(sp: Spec, value: Any, name: str, error: Error) -> tuple:
     if not isinstance(value, (list, tuple)):
         raise error(name, f"must be an array of numbers, got {type_name(value)}")
-    if sp.length is not None and len(value) != sp.length:
-        raise error(name, f"must have {sp.length} entries, got {len(value)}")
+    lengths = sp.length if isinstance(sp.length, tuple) else (sp.length,)
+    if sp.length is not None and len(value) not in lengths:
+        raise error(name, f"must have {' or '.join(map(str, lengths))} entries, got "
+                    f"{len(value)}")
     if len(value) < sp.min_length:
         raise error(name, f"must have at least {sp.min_length} entries, got {len(value)}")
     for i, item in enumerate(value):

@@ -104,7 +104,8 @@ def _range(sp: Spec) -> str:
              ((">", sp.gt), (">=", sp.ge), ("<", sp.lt), ("<=", sp.le)) if b is not None]
     bounds = ", ".join(parts)
     if sp.kind == "numbers":
-        n = (f"{sp.length} entries" if sp.length else
+        n = (f"{' or '.join(map(str, sp.length))} entries" if isinstance(sp.length, tuple)
+             else f"{sp.length} entries" if sp.length else
              f"at least {sp.min_length} entries" if sp.min_length > 1 else "")
         bounds = ", ".join(x for x in (n, f"each {bounds}" if bounds else "") if x)
     elif sp.kind in ("string", "strings") and sp.choices:

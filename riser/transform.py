@@ -30,7 +30,8 @@ def fixed_ends_scene(scene: Scene, hang_off_xy, seabed_length: float, *,
     """Fixed-ends copy of a touchdown-form scene (:class:`~riser.ends.TdpTensionEnds`,
     :class:`~riser.ends.HangOffAngleEnds` or :class:`~riser.ends.TopTensionEnds`).
 
-    The hang-off is fixed at ``hang_off_xy`` = (x, y) [m] (e.g. the BVP's top point), the
+    The hang-off is fixed at ``hang_off_xy`` = (x, y) or (x, y, z) [m] (e.g. the BVP's
+    top point; z where a current out of plane moved it sideways), the
     anchor is put on the seabed at (-seabed_length, 0), and the first (bottom) segment gets
     the length ``first_segment_length + seabed_length`` (default: its own length, i.e. the
     suspended length of the touchdown form), so that the touchdown stays near x = 0.
@@ -59,7 +60,7 @@ def fixed_ends_scene(scene: Scene, hang_off_xy, seabed_length: float, *,
     elif seabed_stiffness is not None:
         seabed = dataclasses.replace(seabed, stiffness=float(seabed_stiffness))
     ends = FixedEnds(anchor=(-float(seabed_length), 0.0),
-                     hang_off=(float(hang_off_xy[0]), float(hang_off_xy[1])))
+                     hang_off=tuple(float(v) for v in hang_off_xy))
     current = scene.current
     if scene.water_depth is None and current is not None:
         current = _cut_at(current, float(hang_off_xy[1]))
@@ -74,6 +75,15 @@ def _cut_at(current: Current, top: float) -> Current:
     if h[-1] <= top * (1.0 + SURFACE_ROUND_OFF):
         return current
     keep = [i for i, y in enumerate(h) if y < top]
+    heights = tuple(h[i] for i in keep) + (top,)
+    if current.turns:            # the velocity at top, component by component
+        ux, uz = (float(v) for v in current.velocity(top))
+        heading = float(np.degrees(np.arctan2(uz, ux)))
+        return current.replace(heights=heights,
+                               speeds=tuple(current.speeds[i] for i in keep)
+                               + (float(np.hypot(ux, uz)),),
+                               headings_deg=tuple(current.headings_deg[i] for i in keep)
+                               + (heading,))
     speed = float(np.interp(top, h, current.speeds))
-    return current.replace(heights=tuple(h[i] for i in keep) + (top,),
+    return current.replace(heights=heights,
                            speeds=tuple(current.speeds[i] for i in keep) + (speed,))

@@ -1021,6 +1021,10 @@ def generated_scene(draw, name: str = "fz-generated") -> dict:
         chord = math.hypot(span, h - y0)
         total = chord * draw(st.sampled_from([0.99, 1.0005, 1.01, 1.05, 1.2, 1.5, 2.0]))
         ends = {"anchor": [0.0, y0], "hang_off": [span, h]}
+        if draw(st.integers(0, 3)) == 0:      # 3D: the hang-off out of the anchor's plane
+            ends["hang_off"].append(draw(_f(-0.5 * span, 0.5 * span)))
+            chord = math.hypot(chord, ends["hang_off"][2])
+            total = max(total, chord * 1.0005)
     else:
         total = h * draw(_f(1.2, 4.0))
         if form == "tdp":
@@ -1057,9 +1061,12 @@ def generated_scene(draw, name: str = "fz-generated") -> dict:
     if depth is not None and draw(st.integers(0, 3)) == 0:
         top = depth
         u = draw(_f(-2.0, 2.0))
-        data.setdefault("environment", {})["current"] = {
-            "heights": [0.0, top], "speeds": [0.0, u],
-            "heading_deg": draw(st.sampled_from([0.0, 180.0, 90.0, 45.0, -30.0]))}
+        current = {"heights": [0.0, top], "speeds": [0.0, u]}
+        if draw(st.integers(0, 3)) == 0:      # 3D: a current turning with depth
+            current["headings_deg"] = [draw(_f(-180.0, 180.0)), draw(_f(-180.0, 180.0))]
+        else:
+            current["heading_deg"] = draw(st.sampled_from([0.0, 180.0, 90.0, 45.0, -30.0]))
+        data.setdefault("environment", {})["current"] = current
     if seabed is not None:
         data["seabed"] = seabed
     data["line_types"] = {"pipe": lt}

@@ -186,14 +186,18 @@ def test_current_reverses_sign_symmetry():
                                                            rel=1e-9)
 
 
-def test_out_of_plane_current_is_refused():
+def test_a_touchdown_form_under_a_cross_current_at_the_seabed_is_refused():
+    # the touchdown form lays the grounded line straight on a rigid, frictionless seabed:
+    # a current across it there has no equilibrium of that form (issue 32: 3D scenes are
+    # solved by the 3D rod, this one is refused)
     sc = resolve("wang2014-baseline").replace(current=Current(heights=(0.0,), speeds=(1.0,),
                                                               heading_deg=90.0))
     # one refusal path: a refused result before solving, with the reason; require() raises it
     res = bvp.solve(sc)
-    assert res.status is Status.REFUSED and res.profile is None and "planar only" in res.message
+    assert (res.status is Status.REFUSED and res.profile is None
+            and "frictionless seabed" in res.message)
     assert res.status.exit_code == 2
-    with pytest.raises(UnsupportedSceneError, match="planar only"):
+    with pytest.raises(UnsupportedSceneError, match="frictionless seabed"):
         res.require()
 
 

@@ -192,15 +192,19 @@ def test_negative_control_drag_halved():
 # hard-flexible: EI = 1e3 N m2, bending length sqrt(EI/T) ~ 0.04-0.07 m, far below any
 #   practical VFIFE element: its moment is unresolved at 1 m (21 % of a 3.3 N m M_max);
 # hard-buoyancy-loss, hard-current-neg2p5: the BVP does not converge (stated failure);
-# hard-out-of-plane-current: 3D, the BVP refuses it.
 # hard-coarse-elements, hard-large-heave, hard-long-dynamic set their own element length
 # (20, 2, 5 m) for their stress purpose; their statics are compared at the 1 m default.
 HARD_COMPARED = ("hard-coarse-elements", "hard-current-pos2p5", "hard-current-reversing",
                  "hard-deep-scr", "hard-large-buoyancy", "hard-large-heave",
-                 "hard-long-dynamic", "hard-many-buoys", "hard-slack-touchdown", "hard-stiff")
+                 "hard-long-dynamic", "hard-many-buoys", "hard-out-of-plane-current",
+                 "hard-slack-touchdown", "hard-stiff")
 BUILTIN = ("wang2014-baseline", "wang2014-current-neg1p5", "wang2014-current-neg0p75",
            "wang2014-current-0p75", "wang2014-current-1p5", "scr-steel", "yu2021-a1",
-           "yu2021-a2", "yu2021-a2-sheared", "yu2021-a3", "yu2021-a4")
+           "yu2021-a2", "yu2021-a2-sheared", "yu2021-a3", "yu2021-a4",
+           # 3D (issue 32): both methods in 3D, the planar protocol's tolerances
+           "scr-steel-current-45", "scr-steel-current-90", "scr-steel-current-turning",
+           "yu2021-a3-current-45", "yu2021-a3-current-90", "yu2021-a3-current-turning",
+           "yu2021-a3-hang-off-offset")
 
 
 @pytest.mark.slow

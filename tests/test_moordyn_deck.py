@@ -217,11 +217,13 @@ def test_bad_deck_one_line_naming_the_deck_line(case, tmp_path, capsys):
         assert f"bad.dat: line {_line_of(text, pattern)}: " in err, err
 
 
-def test_turning_current_is_refused(tmp_path, capsys):
+def test_vertical_current_is_refused(tmp_path, capsys):
+    """A current that turns with depth imports (tests/test_moordyn_3d.py); one with a
+    vertical component is still refused, naming its row."""
     text = GOOD.replace("0                        writeLog", "0 writeLog\n1 Currents")
-    profile = "h\nh\nh\n-1000 0.5 0 0\n-500 0.2 0.3 0\n0 1.0 0 0\n"
+    profile = "h\nh\nh\n-1000 0.5 0 0\n-500 0.2 0.3 0.1\n0 1.0 0 0\n"
     err = _bad(text, tmp_path, capsys, profile)
-    assert "current_profile.txt: line 5: the current turns" in err
+    assert "current_profile.txt: line 5: uz = 0.1: a vertical current" in err
 
 
 def test_missing_current_file_is_refused(tmp_path, capsys):

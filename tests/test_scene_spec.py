@@ -102,7 +102,7 @@ PIPE = dict(name="p", outer_diameter=0.3, inner_diameter=0.25, mass_per_length=1
     (lambda: FixedEnds(anchor=(0.0, 0.0), hang_off=(-600.0, 500.0)), "<FixedEnds>",
      "hang_off[0]", "must be > anchor[0] = 0 (x points from the anchor towards the hang-off)"),
     (lambda: FixedEnds(anchor=(0.0,), hang_off=(600.0, 500.0)), "<FixedEnds>", "anchor",
-     "must have 2 entries, got 1"),
+     "must have 2 or 3 entries, got 1"),
     (lambda: TopMotion(axis="w", amplitude=1.0, period=10.0), "<TopMotion>", "axis",
      "must be one of 'x', 'y', 'z', got 'w'"),
     (lambda: TopMotion(axis="y", times=(0.0, 2.0, 1.0), displacements=(0.0, 1.0, 0.0)),
@@ -170,7 +170,8 @@ def expected_scene(data: dict) -> dict:
     cur = env.get("current")
     out["current"] = None if cur is None else {
         "heights": tuple(cur["heights"]), "speeds": tuple(cur["speeds"]),
-        "heading_deg": cur.get("heading_deg", 0.0)}
+        "heading_deg": cur.get("heading_deg", 0.0),
+        "headings_deg": tuple(cur["headings_deg"]) if "headings_deg" in cur else None}
     sb = data.get("seabed")
     out["seabed"] = None if sb is None else {"stiffness": sb["stiffness"], "friction": sb.get(
         "friction", 0.0), "damping": sb.get("damping", 0.0)}

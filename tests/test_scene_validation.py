@@ -205,7 +205,7 @@ CASES = [
     ("number-for-array", F, "anchor = [0.0, 0.0]", "anchor = 0.0", "ends.anchor", ["must be an array"]),
     ("string-in-array", F, "speeds = [0.0, 1.2]", 'speeds = [0.0, "1.2"]',
      "environment.current.speeds[1]", ["must be a number"]),
-    ("short-array", F, "anchor = [0.0, 0.0]", "anchor = [0.0]", "ends.anchor", ["must have 2 entries"]),
+    ("short-array", F, "anchor = [0.0, 0.0]", "anchor = [0.0]", "ends.anchor", ["must have 2 or 3 entries"]),
     ("number-for-table", W, "[environment]\ngravity = 9.8\nwater_density = 1024.0\n", "environment = 5\n",
      "environment", ["must be a table"]),
     ("array-for-ends-table", W, "[ends]", "[[ends]]", "ends", ["must be a table"]),
@@ -612,8 +612,9 @@ def test_cli_unknown_builtin_exit_2(tmp_path, run_cli):
     assert len(lines) == 1 and lines[0].startswith("error: no-such-scene: no such file"), err
 
 
-def test_cli_out_of_plane_current_bvp_exit_2(tmp_path, run_cli):
-    # protects: bvp refuses an out-of-plane current with exit 2 and says it is planar only
+def test_cli_touchdown_form_in_a_cross_current_bvp_exit_2(tmp_path, run_cli):
+    # protects: bvp refuses a touchdown form under a current across its plane at the
+    # seabed (a rigid frictionless seabed cannot hold the grounded line) with exit 2
     scene = tmp_path / "scene.toml"
     scene.write_text(mutate(WANG, "[line_types.steel]", "[environment.current]\nheights = [0.0]\n"
                             "speeds = [0.5]\nheading_deg = 90.0\n\n[line_types.steel]"))
@@ -621,7 +622,7 @@ def test_cli_out_of_plane_current_bvp_exit_2(tmp_path, run_cli):
     assert code == 2
     lines = err.splitlines()
     assert len(lines) == 1 and lines[0].startswith("error: scene.toml: "), err
-    assert "bvp method is planar only" in lines[0] and "heading_deg" in lines[0]
+    assert "frictionless seabed" in lines[0] and "environment.current" in lines[0]
     assert "Traceback" not in err + out
 
 

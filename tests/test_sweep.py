@@ -50,6 +50,8 @@ OFFSETS = ([1480.0, 1000.0], [1520.0, 1000.0])
 SUMMARY_COLUMNS = ["hang_off_tension", "hang_off_angle_deg", "max_tension", "max_tension_s",
                    "min_tension", "max_moment", "max_moment_s", "max_shear", "tdp_x",
                    "tdp_tension", "span", "length"]
+#: the 3D figures after them (empty for a planar case)
+LATERAL_COLUMNS = ["max_lateral_offset", "max_lateral_offset_s"]
 AGREEMENT_ROWS = ["configuration", "tension", "moment", "hang_off_tension", "max_moment"]
 
 
@@ -288,9 +290,9 @@ BAD = {
                             ["case 1", "environment.water_depth", "number"]),
     "scalar hang_off": ('base = "scr-steel"\n[[vary]]\nkey = "ends.hang_off"\n'
                         'values = [[1480.0, 1000.0], 1500.0]\n', ["case 1", "ends.hang_off"]),
-    "3-element hang_off": ('base = "scr-steel"\n[[vary]]\nkey = "ends.hang_off"\n'
-                           'values = [[1500.0, 1000.0, 0.0]]\n',
-                           ["case 0", "ends.hang_off", "2 entries"]),
+    "4-element hang_off": ('base = "scr-steel"\n[[vary]]\nkey = "ends.hang_off"\n'
+                           'values = [[1500.0, 1000.0, 0.0, 1.0]]\n',
+                           ["case 0", "ends.hang_off", "2 or 3 entries"]),
     "empty values": ('base = "scr-steel"\n[[vary]]\nkey = "ends.hang_off"\nvalues = []\n',
                      ["vary[0].values", "empty"]),
     "missing values": ('base = "scr-steel"\n[[vary]]\nkey = "ends.hang_off"\n',
@@ -360,7 +362,8 @@ def test_a_refused_sweep_leaves_no_table_of_an_earlier_run(run_cli, resumable, t
 # ============================================================ 3. a real run on scr-steel
 def test_cases_csv_has_the_documented_columns_and_one_row_per_case_and_method(swept):
     assert swept.header == (["case", "method", "ends.hang_off", "status", "wall_time_s",
-                             *SUMMARY_COLUMNS, "warnings", "agreement", "agreement_note",
+                             *SUMMARY_COLUMNS, *LATERAL_COLUMNS, "warnings", "agreement",
+                             "agreement_note",
                              "worst_quantity", "worst_ratio",
                              *(f"{q}_rel_diff" for q in AGREEMENT_ROWS), "tdp_x_diff",
                              "message"])

@@ -93,12 +93,15 @@ def vfife_equivalent(scene: Scene, paper: SolveResult | None = None) -> VfifeEqu
                           f"the BVP of its own model did not converge ({paper.message})")
     length = scene.vfife.seabed_length
     sm = paper.summary()
-    fixed = fixed_ends_scene(scene, (sm["hang_off_x"], sm["hang_off_height"]), length,
+    top = (sm["hang_off_x"], sm["hang_off_height"])
+    if sm["hang_off_z"] != 0.0:          # a current out of plane moved the top sideways
+        top += (sm["hang_off_z"],)
+    fixed = fixed_ends_scene(scene, top, length,
                              first_segment_length=sm["first_segment_suspended_length"])
     model = ", ".join(f"{k} {v}" for k, v in paper.model.items() if k != "seabed_stiffness")
     note = (f"{scene.ends.kind} ends converted to fixed ends from the BVP solution of the "
             f"scene's own model ({model}): hang-off fixed at that top point "
-            f"({sm['hang_off_x']:.3f}, {sm['hang_off_height']:.3f}) m, anchor at x = "
+            f"({', '.join(f'{v:.3f}' for v in top)}) m, anchor at x = "
             f"{-length:g} m on a seabed of stiffness {fixed.seabed.stiffness:.3g} N/m2, i.e. "
             f"{length:g} m of line added to the first segment; arc lengths s are measured "
             f"from that BVP touchdown (the added line has s < 0)")

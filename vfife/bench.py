@@ -91,6 +91,13 @@ def run_bench(out_dir, scene: Scene, *, duration: float = 30.0) -> dict:
         "planar_drag": _kernel_ns(planar_cur, static_model, True),
         "spatial": _kernel_ns(scene, static_model, False),
         "spatial_drag": _kernel_ns(spatial_cur, static_model, False),
+        # a sheared profile at one heading against one turning with height (the second,
+        # z-component current pass of a turning profile: issue 32)
+        "spatial_drag_profile": _kernel_ns(scene.replace(current=Current(
+            heights=(0.0, 1500.0), speeds=(1.0, 1.0), heading_deg=90.0)), static_model, False),
+        "spatial_drag_turning": _kernel_ns(scene.replace(current=Current(
+            heights=(0.0, 1500.0), speeds=(1.0, 1.0), headings_deg=(90.0, 0.0))),
+            static_model, False),
         "planar_drag_surface": _kernel_ns(
             planar_cur.replace(water_depth=float(static_model.X[1, -1]) + 10.0),
             static_model, True, surface=True),
@@ -119,7 +126,9 @@ def run_bench(out_dir, scene: Scene, *, duration: float = 30.0) -> dict:
                                        "spatial": ns["spatial"],
                                        "planar_drag_surface": ns["planar_drag_surface"],
                                        "planar_drag_flow": ns["planar_drag_flow"],
-                                       "planar_drag_slug": ns["planar_drag_slug"]},
+                                       "planar_drag_slug": ns["planar_drag_slug"],
+                                       "spatial_drag_profile": ns["spatial_drag_profile"],
+                                       "spatial_drag_turning": ns["spatial_drag_turning"]},
         "compile_s": cold,
         "cache_load_s": cache_load,
         "static_wall_s": stat.wall_time_s,
@@ -140,6 +149,8 @@ def run_bench(out_dir, scene: Scene, *, duration: float = 30.0) -> dict:
             "surface_on_over_off_planar_drag": ns["planar_drag_surface"] / ns["planar_drag"],
             "flow_on_over_off_planar_drag": ns["planar_drag_flow"] / ns["planar_drag"],
             "slug_on_over_off_planar_drag": ns["planar_drag_slug"] / ns["planar_drag"],
+            "turning_over_one_heading_spatial_drag": (ns["spatial_drag_turning"]
+                                                      / ns["spatial_drag_profile"]),
         },
         "targets": {"kernel_ns_planar": 6.0, "kernel_ns_spatial_drag": 15.0,
                     "static_wall_s": 2.0, "realtime_factor_1m": 10.0},
@@ -177,5 +188,7 @@ def format_table(bench: dict) -> str:
                  f"x{e['drag_on_over_off_spatial']:.2f}; 3D/planar x{e['spatial_over_planar']:.2f}; "
                  f"sea surface on/off (planar + drag) x{e['surface_on_over_off_planar_drag']:.2f}; "
                  f"internal flow on/off (planar + drag) x{e['flow_on_over_off_planar_drag']:.2f}, "
-                 f"slug x{e['slug_on_over_off_planar_drag']:.2f}")
+                 f"slug x{e['slug_on_over_off_planar_drag']:.2f}; a current turning with "
+                 f"height / one heading (3D + drag) "
+                 f"x{e.get('turning_over_one_heading_spatial_drag', float('nan')):.2f}")
     return "\n".join(lines)

@@ -18,8 +18,8 @@ Envelopes (one row per node): s [m], tension_min, tension_max [N], moment_max [N
 curvature_max [1/m], y_min, y_max [m] (height extremes: seabed and surface clearance).
 States (``[dynamics] save_states``): t (k,), s (n,), x (k, n, 3) [m], v (k, n, 3) [m/s],
 tension (k, n) [N] (effective) and moment (k, n) [N m] at the nodes, and moment_vector
-(k, n, 3) [N m] (the nodal moment's global x, y, z components: the signed in-plane
-bending of a planar line is its z component).
+(k, n, 3) [N m] (the nodal moment's global x, y, z components, -EI t x t': minus the
+signed in-plane bending of a planar line is its z component).
 """
 
 from __future__ import annotations

@@ -100,7 +100,8 @@ def blow_up_cause(info: dict) -> str:
 
 
 def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Model, dict]:
-    """Integrate the scene's [dynamics] from the static state ``static``.
+    """Integrate the scene's [dynamics] from the static state ``static`` (its dead load,
+    if any, carries over: :class:`vfife.model.Model`).
 
     Returns (model at the end, info) where info holds 'timeseries' (dict of arrays),
     'envelope' (dict of arrays along s), 'states' (dict for npz, None unless
@@ -118,7 +119,7 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
     added = any(scene.line_types[s.line_type].added_mass > 0.0 for s in scene.segments)
     rot_scale = vf.rotational_inertia_scale_dynamics
     model = Model(scene, mesh, rot_scale=rot_scale, added_mass=added, planar=planar,
-                  drag=True, surface=True, flow="dynamic")
+                  drag=True, surface=True, flow="dynamic", dead_load=static.dead_load)
     model.X[:] = static.X
     model.D[:] = static.D
     tm = dyn.top_motion

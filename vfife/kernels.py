@@ -147,7 +147,8 @@ def current_pass(y, heights, speeds, slopes, U):
     clamped ramps, U = speeds[0] + sum_j slopes[j] (clip(y, h_j, h_j+1) - h_j), slopes[j] =
     (speeds[j+1] - speeds[j]) / (h_j+1 - h_j), so that the loop over the nodes vectorises
     (a search for the interval of each node does not; equal to it to round-off). A single
-    height (uniform current) is a fill."""
+    height (uniform current) is a fill. A turning profile runs it twice, on the x and on
+    the z components of the velocity at the heights (see :func:`run`)."""
     n = y.shape[0]
     s0 = speeds[0]
     for i in range(n):
@@ -429,18 +430,22 @@ def _rotate_3d(i, dx, dy, dz, wx, wy, wz, px, py, pz, jinv, jrot, dt, c1, c2):
 @njit(**_JIT)
 def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a2,
               b0, b1, b2, wload, mass, im, imd, jinv, jrot, kst, cseabed, mu, vfric,
-              U, cdn, cdt, cdir, use_drag, qd0, qd1, qd2, use_dashpot, wair, iair, madd,
-              sband, dband, ysurf, use_surface, ql0, ql1, ql2, use_flow, dt, c, stats, R, RM):
-    """Fused node pass (3D): nodal force = f[i] - f[i-1] - weight (+ seabed, + drag),
-    moment = a[i] + b[i-1]; central-difference update of the translations of nodes
-    1..n-2 (added mass normal to the director: im = 1/(m + ma), imd = 1/m - im) and of
-    the rotations of every node. All arrays are (n,) or (ne,) rows.
+              U, Uz, cdn, cdt, cdir, use_drag, qd0, qd1, qd2, use_dashpot, wair, iair, madd,
+              sband, dband, ysurf, use_surface, ql0, ql1, ql2, use_flow, pl0, pl1, pl2,
+              use_dead, dt, c, stats, R, RM):
+    """Fused node pass (3D): nodal force = f[i] - f[i-1] - weight (+ seabed, + drag,
+    + dead load), moment = a[i] + b[i-1]; central-difference update of the translations
+    of nodes 1..n-2 (added mass normal to the director: im = 1/(m + ma), imd = 1/m - im)
+    and of the rotations of every node. All arrays are (n,) or (ne,) rows.
     kst (n,): seabed stiffness x tributary length [N/m] (zeros without a seabed);
     cseabed (n,): contact damping [N s/m]; mu, vfric: friction coefficient and
     regularisation speed [m/s].
     Drag (when use_drag): Morison on the velocity relative to the current, U (n,) the
-    current speed at the nodes (:func:`current_pass`) along the unit heading cdir (3,):
-    u = U cdir - v; normal part u_n = u - (u.d) d, tangential u_t = u.d;
+    current speed at the nodes [m/s] (:func:`current_pass`) along the unit heading cdir
+    (3,), plus Uz (n,) [m/s] along +z: u = U cdir + Uz e_z - v. One heading: U the signed
+    speed along it, Uz = 0 (adding 0.0 changes no bit); a turning profile: U the x
+    components (cdir = e_x) and Uz the z components of the current at the nodes, each
+    interpolated linearly in height. Normal part u_n = u - (u.d) d, tangential u_t = u.d;
     f = cdn |u_n| u_n + cdt |u_t| u_t d with cdn, cdt (n,) = 0.5 rho D C_D x tributary
     length [kg/m] (cdt uses the perimeter, pi D).
     qd0..qd2 (ne,): axial dashpot forces of :func:`dashpot_pass` (statics, read only when
@@ -453,6 +458,8 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
     step). Weight wair + q (wload - wair) (wair (n,) the weight in air [N]), mass m + q
     m_a normal to the axis (madd (n,) [kg]; iair = 1/m), drag x q.
     ql0..ql2 (n,): internal-flow forces of :func:`flow_pass` (read only when use_flow).
+    pl0..pl2 (n,): a dead load of fixed direction [N] per node, added to the weight
+    (read only when use_dead; see :class:`vfife.model.Model`).
     Returns (max squared free-node force [N2], max squared moment [N2 m2], 2 x KE [J]);
     the two maxima are 0 unless ``stats``."""
     n = x.shape[0]
@@ -504,7 +511,7 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
             cu = U[i]
             rx = cu * cx - ux
             ry = cu * cy - uy
-            rz = cu * cz - uz
+            rz = cu * cz + Uz[i] - uz
             rt = rx * ex + ry * ey + rz * ez
             rnx = rx - rt * ex
             rny = ry - rt * ey
@@ -518,6 +525,10 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
             gx += ql0[i]
             gy += ql1[i]
             gz += ql2[i]
+        if use_dead:
+            gx += pl0[i]
+            gy += pl1[i]
+            gz += pl2[i]
         R[i] = gx * gx + gy * gy + gz * gz
         if use_dashpot:                   # after the residual: not an out-of-balance force
             gx += qd0[i] - qd0[i - one]
@@ -549,10 +560,10 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
 def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, jinv, jrot,
                  kst, cseabed, mu, vfric, U, cdn, cdt, cdir, use_drag, qd0, qd1,
                  use_dashpot, wair, iair, madd, sband, dband, ysurf, use_surface, ql0, ql1,
-                 use_flow, dt, c, stats, R, RM):
+                 use_flow, pl0, pl1, use_dead, dt, c, stats, R, RM):
     """Planar version of :func:`node_pass` (w (n,) rotation rate about z, a0, b0 (ne,)
     moments about z, cdir (2,) in plane, qd0, qd1 (ne,) dashpot forces, ql0, ql1 (n,)
-    flow forces)."""
+    flow forces, pl0, pl1 (n,) dead load [N])."""
     n = x.shape[0]
     c1 = 1.0 - 0.5 * c * dt
     c2 = 1.0 / (1.0 + 0.5 * c * dt)
@@ -613,6 +624,9 @@ def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, 
         if use_flow:
             gx += ql0[i]
             gy += ql1[i]
+        if use_dead:
+            gx += pl0[i]
+            gy += pl1[i]
         R[i] = gx * gx + gy * gy
         if use_dashpot:                   # after the residual: not an out-of-balance force
             gx += qd0[i] - qd0[i - one]
@@ -645,18 +659,24 @@ def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, 
 # ============================================================================ driver
 @njit(**_JIT)
 def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd, jinv,
-        jrot, wload, kst, cdn, cdt, heights, speeds, slopes, cdir, use_drag, cseabed, mu,
-        vfric, eta, Q, use_dashpot, wair, iair, madd, sband, dband, ysurf, use_surface,
-        use_flow, t0, fpar, fnodes, FL, dt, c, top0, top_axis, top_disp, tol_f,
-        tol_m, vmax):
+        jrot, wload, kst, cdn, cdt, heights, speeds, slopes, cdir, use_drag, Uz, speeds_z,
+        slopes_z, turning, cseabed, mu, vfric, eta, Q, use_dashpot, wair, iair, madd,
+        sband, dband, ysurf, use_surface, use_flow, t0, fpar, fnodes, FL, P, use_dead, dt,
+        c, top0, top_axis, top_disp, tol_f, tol_m, vmax):
     """Advance up to ``nsteps`` explicit steps.
 
     jinv, jrot : (n,) inverse rotational inertia [1/(kg m2)] (0 at a clamped end) and the
         inertia [kg m2].
     kst : (n,) seabed stiffness x tributary length [N/m] (zeros without a seabed).
     R : (2, n) scratch for the squared nodal out-of-balance forces and moments.
-    U : (n,) scratch for the current speed at the nodes; heights, speeds, slopes the
-        current profile (see :func:`current_pass`); cdir its unit heading.
+    U : (n,) scratch for the current speed at the nodes [m/s]; heights [m], speeds
+        [m/s], slopes [1/s] the current profile (see :func:`current_pass`); cdir its unit
+        heading.
+    Uz, speeds_z, slopes_z, turning : a current that turns with height (``turning``,
+        3D kernels only): speeds, slopes the profile's x components and cdir = e_x,
+        speeds_z, slopes_z its z components [m/s], [1/s] at the same heights, Uz (n,)
+        scratch for the z component at the nodes (:func:`current_pass` on them, only when
+        turning; otherwise Uz stays zero, see :func:`node_pass`).
     eta : (ne,) axial dashpot coefficients [N s/m] and Q (k, ne) scratch for their forces,
         used only when use_dashpot (statics; see :func:`dashpot_pass`).
     wair, iair, madd, sband, dband : (n,) weight in air [N], inverse mass [1/kg], added
@@ -665,6 +685,8 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
     use_flow, t0, fpar, fnodes, FL : internal flow (see :func:`flow_pass`), run only when
         use_flow (dynamics): t0 [s] the time at the start of this call, FL (6, n)
         the flow forces (rows 0-2) and the previous step's Coriolis forces (rows 3-5).
+    P, use_dead : (3, n) a dead load of fixed direction per node [N] (global x, y, z),
+        added to the weight when use_dead (rows x, y on the planar path).
     planar : use the planar kernels on rows 0-1 of X, V, D (z untouched) and W[2] as the
         rotation rate; F (2, ne), MA, MB (1, ne), cdir (2,) then.
     top0 (3,) hang-off position at zero displacement; top_axis (3,) unit axis; top_disp
@@ -685,12 +707,17 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
     Wz = W[2]
     check = tol_f >= 0.0 or tol_m >= 0.0
     drag_profile = use_drag and heights.shape[0] > 1
+    drag_z = use_drag and turning and not planar
     if use_drag and not drag_profile:       # uniform current: U never changes
         current_pass(X[1], heights, speeds, slopes, U)
+        if drag_z:
+            current_pass(X[1], heights, speeds_z, slopes_z, Uz)
     for k in range(nsteps):
         stats = check or (k & 255) == 0 or k == nsteps - 1
         if drag_profile:
             current_pass(X[1], heights, speeds, slopes, U)
+            if drag_z:
+                current_pass(X[1], heights, speeds_z, slopes_z, Uz)
         if use_flow:
             tk = t0 + k * dt
             if planar:
@@ -710,7 +737,7 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
                                       cseabed, mu, vfric, U, cdn, cdt, cdir, use_drag,
                                       Q[0], Q[1], use_dashpot, wair, iair, madd, sband,
                                       dband, ysurf, use_surface, FL[0], FL[1], use_flow,
-                                      dt, c, stats, R[0], R[1])
+                                      P[0], P[1], use_dead, dt, c, stats, R[0], R[1])
         else:
             element_pass(X[0], X[1], X[2], D[0], D[1], D[2], l0, kax, kb, F[0], F[1], F[2],
                          MA[0], MA[1], MA[2], MB[0], MB[1], MB[2])
@@ -719,10 +746,11 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
             r2, m2, k1 = node_pass(X[0], X[1], X[2], V[0], V[1], V[2], D[0], D[1], D[2],
                                    W[0], W[1], W[2], F[0], F[1], F[2], MA[0], MA[1], MA[2],
                                    MB[0], MB[1], MB[2], wload, mass, im, imd, jinv, jrot,
-                                   kst, cseabed, mu, vfric, U, cdn, cdt, cdir, use_drag,
-                                   Q[0], Q[1], Q[2], use_dashpot, wair, iair, madd, sband,
-                                   dband, ysurf, use_surface, FL[0], FL[1], FL[2],
-                                   use_flow, dt, c, stats, R[0], R[1])
+                                   kst, cseabed, mu, vfric, U, Uz, cdn, cdt, cdir,
+                                   use_drag, Q[0], Q[1], Q[2], use_dashpot, wair, iair,
+                                   madd, sband, dband, ysurf, use_surface, FL[0], FL[1],
+                                   FL[2], use_flow, P[0], P[1], P[2], use_dead, dt, c,
+                                   stats, R[0], R[1])
         ke = 0.5 * k1
         d1 = top_disp[k + 1]
         vt = (d1 - top_disp[k]) / dt

@@ -15,6 +15,7 @@ import numpy as np
 from scipy.interpolate import CubicSpline
 from scipy.optimize import least_squares
 
+from riser.frame import LinePlane
 from riser.scene import Scene
 from riser.sections import segment_properties
 
@@ -109,6 +110,11 @@ def catenary_shape(scene: Scene, s_nodes: np.ndarray, grid_step: float = 1.0,
     s_t = 0 with the end 120 m off the hang-off, and the relaxation diverged at step 1).
     Otherwise the line hangs from the anchor with the unknown vertical force V0 there.
     The two unknowns are found by least squares so the end lands on the hang-off.
+    The catenary lies in the vertical plane through the two ends (x, y for ends in one
+    plane z = const, which keeps their z; else :class:`riser.frame.LinePlane`: it is
+    computed in (xi, y), xi the horizontal distance from the anchor along the plane, and
+    positions and tangents are mapped back to (x, z)); node 0 is put on the anchor and the
+    last node on the hang-off.
     ``uniform_weight`` [N/m]: the shape of a line of that uniform submerged weight instead
     of the scene's (the start of a continuation in the weight, see
     :func:`vfife.statics.solve_static`).
@@ -116,8 +122,15 @@ def catenary_shape(scene: Scene, s_nodes: np.ndarray, grid_step: float = 1.0,
     how far the EI = 0 shape passed below the seabed before it was clamped onto it).
     """
     props = segment_properties(scene)
-    a = np.asarray(scene.ends.anchor, float)
-    h = np.asarray(scene.ends.hang_off, float)
+    ends = scene.ends
+    a3 = np.asarray(ends.anchor_point, float)
+    h3 = np.asarray(ends.hang_off_point, float)
+    plane = None if ends.in_plane else LinePlane.of(scene)
+    if plane is None:              # (x, y) as given: the planar arithmetic unchanged
+        a, h = a3[:2].copy(), h3[:2].copy()
+    else:                          # (xi, y) in the plane, xi from the anchor
+        a = np.array([0.0, a3[1]])
+        h = np.array([math.hypot(h3[0] - a3[0], h3[2] - a3[2]), h3[1]])
     L = scene.total_length
     m = max(200, int(math.ceil(L / grid_step)))
     sg = np.linspace(0.0, L, m + 1)
@@ -188,6 +201,15 @@ def catenary_shape(scene: Scene, s_nodes: np.ndarray, grid_step: float = 1.0,
         X[below, 1] = 0.0
         D[below, 1] = 0.0
         D[below, 0] = np.where(D[below, 0] == 0.0, 1.0, D[below, 0])
+    if plane is None:
+        X[:, 2] = a3[2]
+    else:                          # (xi, y) -> (x, y, z); tangents rotated alike
+        X[:, 0], X[:, 2] = plane.from_plane(X[:, 0], 0.0)
+        c, sn = math.cos(plane.psi), math.sin(plane.psi)
+        D[:, 2] = sn * D[:, 0]
+        D[:, 0] = c * D[:, 0]
+    X[0] = a3
+    X[-1] = h3
     D /= np.linalg.norm(D, axis=1)[:, None]
     smid = 0.5 * (s_nodes[1:] + s_nodes[:-1])
     info = {"catenary_misfit_m": err * chord, "catenary_H": H,

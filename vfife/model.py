@@ -3,7 +3,9 @@
 A :class:`Model` holds the nodal state (3D arrays always; a planar scene is stepped by
 the planar kernels on 2D copies, see :meth:`Model.run`), the lumped nodal properties and
 the flags of the active effects, so that a scene without current does no drag work, a
-static run no added-mass work, and a planar scene no out-of-plane work.
+current that does not turn with height no work on its z component, a static run no
+added-mass work, a run without a dead load no dead-load work, and a planar scene no
+out-of-plane work.
 """
 
 from __future__ import annotations
@@ -45,11 +47,17 @@ class Model:
         pass every step (masses, weights, gradient and Coriolis forces at the model's
         ``time`` [s]); 'static' freezes a slug's weight at t = 0 and runs no flow kernel;
         None ignores the flow.
+    dead_load : optional (qx, qy, qz) [N/m per unit unstretched length, global axes]: a
+        uniform load of fixed direction added to the weight (which acts along -y), lumped
+        to the nodes by their tributary lengths (``P`` (3, n) [N]); none (None or all
+        zero) runs no dead-load work. It does not follow the line's shape (unlike drag),
+        so a line under it has a closed form (tests). A z component needs ``planar``
+        False.
     """
 
     def __init__(self, scene: Scene, mesh: Mesh, *, rot_scale: float, added_mass: bool,
                  planar: bool, drag: bool | None = None, surface: bool = False,
-                 flow: str | None = None):
+                 flow: str | None = None, dead_load=None):
         self.scene = scene
         self.mesh = mesh
         self.planar = planar
@@ -76,18 +84,31 @@ class Model:
         self.has_current = bool(cur is not None and cur.max_abs_speed > 0.0)
         self.use_drag = self.has_current if drag is None else bool(
             drag and (np.any(self.cdn > 0.0) or np.any(self.cdt > 0.0)))
-        if cur is not None:
-            self.heights = np.asarray(cur.heights, float)
-            self.speeds = np.asarray(cur.speeds, float)
-            self.cdir = np.asarray(cur.direction, float)
-        else:
+        # a current that turns with height: its x components along cdir = e_x (U) and its
+        # z components (Uz), each interpolated in height (vfife.kernels.run); one heading:
+        # the signed speed along it, Uz = 0
+        self.turning = bool(cur is not None and cur.turns)
+        self.speeds_z = np.zeros(1)
+        if cur is None:
             self.heights = np.zeros(1)
             self.speeds = np.zeros(1)
             self.cdir = np.array([1.0, 0.0, 0.0])
+        elif self.turning:
+            self.heights = np.asarray(cur.heights, float)
+            ux, uz = cur.components
+            self.speeds = np.asarray(ux, float)
+            self.speeds_z = np.asarray(uz, float)
+            self.cdir = np.array([1.0, 0.0, 0.0])
+        else:
+            self.heights = np.asarray(cur.heights, float)
+            self.speeds = np.asarray(cur.speeds, float)
+            self.cdir = np.asarray(cur.direction, float)
         # current profile slopes (d speed / d height) for the branch-free lookup
-        self.slopes = (np.diff(self.speeds) / np.diff(self.heights) if len(self.heights) > 1
-                       else np.zeros(1))
+        self.slopes = _slopes(self.heights, self.speeds)
+        self.slopes_z = _slopes(self.heights, self.speeds_z) if self.turning else np.zeros(1)
         self.U = np.zeros(n)
+        self.Uz = np.zeros(n)
+        self._set_dead_load(dead_load)
         self.R = np.zeros((2, n))       # scratch: squared nodal residuals
         sb = scene.seabed
         self.use_seabed = sb is not None
@@ -135,6 +156,17 @@ class Model:
             mu = mu0 * fl.density_factor(self.mesh.s, 0.0)
             self.wload = self.wload + (mu - mu0) * self.trib * self.scene.gravity
 
+    def _set_dead_load(self, dead_load) -> None:
+        """The nodal dead load ``P`` (3, n) [N] of a uniform load (qx, qy, qz) [N/m]."""
+        self.dead_load = checked_dead_load(dead_load)
+        self.P = np.zeros((3, self.mesh.n))
+        if self.dead_load is not None:
+            if self.planar and self.dead_load[2] != 0.0:
+                raise ValueError("dead_load: a z component needs the 3D kernels "
+                                 "(planar=False)")
+            self.P = np.outer(self.dead_load, self.trib)
+        self.use_dead = self.dead_load is not None
+
     def set_axial_dashpot(self, eta) -> None:
         """Axial dashpot coefficients [N s/m] per element (scalar or (ne,)); all zero turns
         the dashpot pass off."""
@@ -178,6 +210,8 @@ class Model:
             out.append("slug_flow" if self.has_slug else "internal_flow")
         if np.any(self.madd > 0.0):
             out.append("added_mass")
+        if self.use_dead:
+            out.append("dead_load")
         return out
 
     def positions(self) -> np.ndarray:
@@ -212,11 +246,13 @@ class Model:
                           self.wload, self.kst, self.cdn, self.cdt, self.heights,
                           self.speeds, self.slopes,
                           self.cdir[:2].copy() if self.planar else self.cdir, self.use_drag,
+                          self.Uz, self.speeds_z, self.slopes_z, self.turning,
                           self.cseabed, self.mu, self.vfric,
                           self.eta, self.Q, self.use_dashpot, self.wair, self.iair,
                           self.madd, self.trib, self.dnode, self.ysurf, self.use_surface,
                           self.use_flow, self.time, self.fpar, self.fnodes,
-                          self.FL, dt, c, top0, axis, top_disp, tol_f, tol_m, vmax)
+                          self.FL, self.P, self.use_dead, dt, c, top0, axis, top_disp,
+                          tol_f, tol_m, vmax)
         self.steps += int(out[0])
         if self.use_flow:
             self.time += int(out[0]) * dt
@@ -238,8 +274,9 @@ class Model:
 
     def nodal_results(self) -> dict:
         """Tension [N], moment [N m], shear [N] and curvature [1/m] at the nodes, the
-        moment vector (``moment_vector``, (3, n) [N m], global x, y, z; the in-plane bending
-        of a planar line is its z component) and the element tensions
+        moment vector (``moment_vector``, (3, n) [N m], global x, y, z: the end moment of the
+        elements on the node, -EI t x t', so minus the signed in-plane bending of a planar
+        line is its z component) and the element tensions
         (``element_tension``, (ne,)).
 
         Second order at every node (:mod:`vfife.recovery`): the element tension and shear
@@ -268,7 +305,8 @@ class Model:
                 "curvature": mom / EI_n, "element_tension": N, "moment_vector": M}
 
     def energy(self) -> dict:
-        """Kinetic, strain and gravity energies [J] of the current state (numpy, for tests)."""
+        """Kinetic, strain and gravity energies [J] of the current state (numpy, for tests;
+        'gravity' holds the dead load's potential -P.X too)."""
         N, Ma, Mb, Q, L, _ = self.element_state()
         V, D, W = self.V.T, self.D.T, self.W.T
         ke = 0.5 * np.sum(self.mass[:, None] * V ** 2)
@@ -283,9 +321,27 @@ class Model:
         pb = np.cross(e, D[1:])
         ub = np.sum(self.kb * (2 * np.sum(pa * pa, 1) + 2 * np.sum(pa * pb, 1)
                                + 2 * np.sum(pb * pb, 1)))
-        ug = np.sum(self.wload * X[:, 1])
+        ug = np.sum(self.wload * X[:, 1]) - np.sum(self.P * self.X)
         return {"kinetic": float(ke), "axial": float(ua), "bending": float(ub),
                 "gravity": float(ug), "total": float(ke + ua + ub + ug)}
+
+
+def checked_dead_load(dead_load) -> tuple[float, float, float] | None:
+    """A dead load (qx, qy, qz) [N/m] as three floats, None for none (None or all zero);
+    ValueError unless three finite numbers."""
+    if dead_load is None:
+        return None
+    q = np.asarray(dead_load, float)
+    if q.shape != (3,) or not np.all(np.isfinite(q)):
+        raise ValueError(f"dead_load: (qx, qy, qz) [N/m], three finite numbers, got "
+                         f"{dead_load!r}")
+    return tuple(float(v) for v in q) if np.any(q != 0.0) else None
+
+
+def _slopes(heights: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """d value / d height [1/s] of each interval of a current profile (one entry, 0, for a
+    single height), for the branch-free lookup of :func:`vfife.kernels.current_pass`."""
+    return np.diff(values) / np.diff(heights) if len(heights) > 1 else np.zeros(1)
 
 
 def _node_diameters(scene: Scene, mesh: Mesh) -> np.ndarray:

@@ -10,6 +10,7 @@ import numpy as np
 
 from riser import validity
 from riser.errors import UnsupportedSceneError
+from riser.frame import LinePlane, elevation, plane_columns
 from riser.internal_flow import wall_tension
 from riser.io.scene_file import scene_from_dict
 from riser.profile import Profile
@@ -20,11 +21,24 @@ from .dynamic_outputs import touchdown_s
 from .dynamics import DynamicsOutcome, run_dynamics
 from .ends import require_fixed_ends
 from .mesh import build_mesh
-from .model import Model
+from .model import Model, checked_dead_load
 from .relaxation import RelaxOutcome
 from .statics import solve_static
 
 _COMPILED = {"done": False, "compile_s": 0.0}
+
+
+#: the warm-up's models: (planar, current table, dead load): planar and 3D, a uniform
+#: and a profile current, a current turning with height (3D), a dead load on each path
+_WARM_UP_CASES = (
+    (True, {"heights": [0.0], "speeds": [1.0]}, (1.0, -0.5, 0.0)),
+    (True, {"heights": [0.0, 1.0], "speeds": [1.0, 0.5]}, None),
+    (False, {"heights": [0.0], "speeds": [1.0], "heading_deg": 90.0}, None),
+    (False, {"heights": [0.0, 1.0], "speeds": [1.0, 0.5], "heading_deg": 90.0},
+     (0.0, 0.0, 1.0)),
+    (False, {"heights": [0.0, 1.0], "speeds": [1.0, 0.5], "headings_deg": [0.0, 90.0]},
+     None),
+)
 
 
 def warm_up() -> float:
@@ -32,33 +46,33 @@ def warm_up() -> float:
     elements of 1 m on a seabed, with current) through :meth:`Model.run` and
     :meth:`Model.element_state`, the kernels' only Python callers, so that the kernels
     see the argument types of every real solve: planar and 3D, uniform and profile
-    current. Returns the time spent [s] (first run: compilation, or a cache load of
-    ~0.1 s when Numba's cache is warm; 0 once done in this process, see
+    current, a current turning with height, with and without a dead load
+    (``_WARM_UP_CASES``). Returns the time spent [s] (first run: compilation, or a cache
+    load of ~0.1 s when Numba's cache is warm; 0 once done in this process, see
     :func:`compile_seconds`)."""
     if _COMPILED["done"]:
         return 0.0
     t0 = time.perf_counter()
     anchor, hang_off = np.array([0.0, 0.0, 0.0]), np.array([2.0, 2.0, 0.0])
     model = None
-    for planar in (True, False):
-        for heights, speeds in (([0.0], [1.0]), ([0.0, 1.0], [1.0, 0.5])):  # uniform, profile
-            scene = scene_from_dict({
-                "name": "warm-up",
-                "environment": {"current": {"heights": heights, "speeds": speeds,
-                                            "heading_deg": 0.0 if planar else 90.0}},
-                "seabed": {"stiffness": 1.0e5, "friction": 0.1, "damping": 0.1},
-                "line_types": {"pipe": {"outer_diameter": 0.1, "inner_diameter": 0.05,
-                                        "mass_per_length": 10.0, "axial_stiffness": 1.0e6,
-                                        "bending_stiffness": 1.0e3}},
-                "segments": [{"line_type": "pipe", "length": 3.0}],
-                "ends": {"anchor": anchor[:2].tolist(), "hang_off": hang_off[:2].tolist()},
-            }, "warm_up")
-            mesh = build_mesh(scene, 1.0)
-            model = Model(scene, mesh, rot_scale=1.0, added_mass=True, planar=planar)
-            frac = (mesh.s / mesh.s[-1])[:, None]
-            model.set_state(anchor + frac * (hang_off - anchor),
-                            np.broadcast_to(hang_off - anchor, (mesh.n, 3)))
-            model.run(2, 1e-3, 0.0)
+    for planar, current, dead_load in _WARM_UP_CASES:
+        scene = scene_from_dict({
+            "name": "warm-up",
+            "environment": {"current": dict(current)},
+            "seabed": {"stiffness": 1.0e5, "friction": 0.1, "damping": 0.1},
+            "line_types": {"pipe": {"outer_diameter": 0.1, "inner_diameter": 0.05,
+                                    "mass_per_length": 10.0, "axial_stiffness": 1.0e6,
+                                    "bending_stiffness": 1.0e3}},
+            "segments": [{"line_type": "pipe", "length": 3.0}],
+            "ends": {"anchor": anchor[:2].tolist(), "hang_off": hang_off[:2].tolist()},
+        }, "warm_up")
+        mesh = build_mesh(scene, 1.0)
+        model = Model(scene, mesh, rot_scale=1.0, added_mass=True, planar=planar,
+                      dead_load=dead_load)
+        frac = (mesh.s / mesh.s[-1])[:, None]
+        model.set_state(anchor + frac * (hang_off - anchor),
+                        np.broadcast_to(hang_off - anchor, (mesh.n, 3)))
+        model.run(2, 1e-3, 0.0)
     model.element_state()
     _COMPILED.update(done=True, compile_s=time.perf_counter() - t0)
     return _COMPILED["compile_s"]
@@ -91,25 +105,54 @@ def bending_checks(mesh, tension: np.ndarray) -> list[str]:
     return out
 
 
+def out_of_plane(scene: Scene, dead_load: tuple | None = None) -> bool:
+    """True when something drives the line out of its plane: the scene is 3D
+    (``Scene.is_planar`` False) or the dead load (qx, qy, qz) [N/m] has a z component."""
+    return not scene.is_planar or (dead_load is not None and dead_load[2] != 0.0)
+
+
+def static_out_of_plane(scene: Scene, dead_load: tuple | None = None) -> bool:
+    """True when the static state leaves the plane of the ends: the scene's statics are 3D
+    (``Scene.statics_planar`` False) or the dead load has a z component (a top motion
+    along z moves only the dynamics out of plane)."""
+    return not scene.statics_planar or (dead_load is not None and dead_load[2] != 0.0)
+
+
 def make_profile(model: Model, scene: Scene) -> Profile:
-    """Profile at the nodes of ``model`` (see :meth:`Model.nodal_results`)."""
+    """Profile at the nodes of ``model`` (see :meth:`Model.nodal_results`). A line driven
+    out of its plane (:func:`static_out_of_plane`: a 3D static state, or a dead load along
+    z) carries
+    the columns ``lateral`` [m] (offset from the vertical plane through the ends),
+    ``moment_in_plane`` and ``moment_out_of_plane`` [N m] (:func:`riser.frame.plane_columns`);
+    a planar one leaves them None."""
     r = model.nodal_results()
     X = model.positions()
     D = model.directors()
     # angle from the horizontal, signed like the planar convention: a tangent pointing
-    # back (towards -x) past the vertical gives an angle above 90 deg
-    theta = np.arctan2(D[:, 1], np.copysign(np.hypot(D[:, 0], D[:, 2]), D[:, 0]))
+    # back (towards the anchor along the line's plane) past the vertical gives an angle
+    # above 90 deg
+    plane = LinePlane.of(scene)
+    theta = elevation(plane, D)
     wall = (wall_tension(scene, model.mesh.s, X[:, 1], r["tension"])
             if scene.internal_flow is not None else None)
+    lateral = inplane = oop = None
+    if static_out_of_plane(scene, model.dead_load):
+        # the nodal moment vector (Model.nodal_results) is the end moment of the elements
+        # meeting at the node, -EI t x t' (a planar line's z component is minus its
+        # signed moment); the line's bending moment EI t x t' (riser.frame's convention,
+        # the BVP's m) is its opposite
+        lateral, inplane, oop = plane_columns(plane, X[:, 0], X[:, 2], D,
+                                              -r["moment_vector"].T)
     return Profile(s=model.mesh.s.copy(), x=X[:, 0], y=X[:, 1], z=X[:, 2], theta=theta,
                    tension=r["tension"], moment=r["moment"], shear=r["shear"],
                    curvature=r["curvature"],
                    tdp_s=touchdown_s(model.mesh.s, X[:, 1], scene.seabed is not None),
-                   wall_tension=wall)
+                   wall_tension=wall, lateral=lateral, moment_in_plane=inplane,
+                   moment_out_of_plane=oop)
 
 
 def solve(scene: Scene, *, element_length: float | None = None, tolerance: float | None = None,
-          progress=None) -> SolveResult:
+          progress=None, dead_load=None) -> SolveResult:
     """Solve a fixed-ends scene (statics, then dynamics if the scene has [dynamics]).
 
     element_length [m]: default ``[vfife] element_length`` (1 m); tolerance: largest nodal
@@ -117,6 +160,12 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
     1e-3); progress: optional callable, ``progress(message)`` or ``progress(message,
     fraction=None)`` (told of the statics' relaxation, and of the dynamics with the
     fraction of the run done; see :func:`riser.callbacks.with_fraction`).
+    dead_load: optional (qx, qy, qz) [N/m per unit unstretched length, global x, y, z]: a
+    uniform load of fixed direction added to the weight (lumped to the nodes by their
+    tributary lengths; statics and dynamics; effect ``dead_load``). Not a scene key: it
+    exists for closed-form checks (a line loaded sideways by a load independent of its
+    shape, which drag is not). A z component makes the run 3D (the planar kernels only
+    for a planar scene and qz = 0) and the profile carry the 3D columns.
     A scene the method cannot represent (ends not fixed, a BVP-only limit in [model], a
     clamped end out of plane) gives a ``refused`` result before solving; an override
     outside the range of its scene key raises SceneError. Never returns NaN results: a
@@ -126,17 +175,19 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
     """
     vf = scene.vfife.override(element_length=element_length, static_tolerance=tolerance)
     h, tol = vf.element_length, vf.static_tolerance
-    planar = bool(scene.is_planar)
+    dead_load = checked_dead_load(dead_load)
+    planar = not out_of_plane(scene, dead_load)
     try:
         require_fixed_ends(scene)
         if vf.clamped_ends and not planar:
             # the elements carry no twist (no GJ): with moment-free ends and no distributed
             # torque a round pipe is torsion-free, but a clamped end of a line loaded out of
             # its plane would need the torsional stiffness
+            key, why = scene.out_of_plane() or ("dead_load", "a dead load along z")
             raise UnsupportedSceneError(
                 f"{scene.name}: vfife.clamped_ends: clamped ends are supported for planar "
-                "scenes only (the VFIFE elements carry no twist); remove the out-of-plane "
-                "current/motion or the clamp")
+                f"scenes only (the VFIFE elements carry no twist), and {key}: {why}; "
+                "remove that or the clamp")
     except UnsupportedSceneError as exc:
         return SolveResult.refused("vfife", scene, exc)
     validity.check_resolution(scene, h)
@@ -144,7 +195,7 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
         progress("vfife: loading the kernels (compiled on the first run)")
     compile_s = warm_up()
     t0 = time.perf_counter()
-    model, sinfo = solve_static(scene, h, tol, planar, progress)
+    model, sinfo = solve_static(scene, h, tol, planar, progress, dead_load=dead_load)
     mesh = model.mesh
     info = {"elements": mesh.ne, "nodes": mesh.n, "element_length": float(np.max(mesh.l0)),
             "time_step": sinfo["time_step"], "steps": sinfo["steps"],

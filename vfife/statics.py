@@ -206,8 +206,7 @@ def catenary_start(scene, mesh: Mesh, h: float, knobs: RelaxationKnobs, info: di
     tensions [N], the catenary's H [N], the ramp (uniform weight [N/m], steps) or ()); the
     catenary's figures go into ``info``."""
     X, D, cinfo = catenary_shape(scene, mesh.s)
-    span = float(np.hypot(*(np.asarray(scene.ends.hang_off, float)
-                            - np.asarray(scene.ends.anchor, float))))
+    span = math.dist(scene.ends.anchor_point, scene.ends.hang_off_point)
     height = max(abs(float(scene.ends.hang_off[1])), 1.0)
     ramp = ()
     if knobs.continuation_steps > 0 and (cinfo["catenary_misfit_m"] > 1e-3 * span
@@ -247,12 +246,13 @@ def interpolated_start(scene, coarse: Model, mesh: Mesh):
 
 
 def stage_model(scene, mesh: Mesh, X, D, tensions, tension: float, knobs: RelaxationKnobs,
-                planar: bool):
+                planar: bool, dead_load=None):
     """The model of one mesh stage, started at (X, D) made length-consistent with the
     element ``tensions`` [N] (see :func:`vfife.mesh.length_consistent`), with its axial
     dashpot, contact damping, fictitious inertia and time step. ``tension`` [N]: the
     line's representative tension (critical steps). Returns (model, dt [s], what limits
-    it, the critical steps, the fictitious inertia's figures)."""
+    it, the critical steps, the fictitious inertia's figures). ``dead_load``: see
+    :class:`vfife.model.Model`."""
     # element lengths consistent with the tension (stretch l0 (1 + N/EA)): a stiff line
     # must not start with chord-length errors
     free = None
@@ -260,7 +260,7 @@ def stage_model(scene, mesh: Mesh, X, D, tensions, tension: float, knobs: Relaxa
         free = ~((X[:-1, 1] <= 1e-6) & (X[1:, 1] <= 1e-6))
     X = length_consistent(X, mesh.l0 * (1.0 + tensions / mesh.EA), free)
     model = Model(scene, mesh, rot_scale=knobs.rot_scale, added_mass=False, planar=planar,
-                  flow="static")
+                  flow="static", dead_load=dead_load)
     model.set_state(X, D)
     model.set_axial_dashpot(axial_dashpot(mesh, knobs.axial_damping))
     # critical steps of the mesh actually relaxed, with its contact spring and damping and
@@ -346,9 +346,11 @@ def relax_stage(model: Model, dt: float, omega1: float, first: bool, tolerance: 
 
 
 def solve_static(scene, element_length: float, tolerance: float, planar: bool,
-                 progress=None) -> tuple[Model, dict]:
+                 progress=None, dead_load=None) -> tuple[Model, dict]:
     """Static equilibrium of a fixed-ends scene; returns (fine model, info dict).
-    ``progress``: optional callable(message), told of each mesh stage's relaxation.
+    ``progress``: optional callable(message), told of each mesh stage's relaxation;
+    ``dead_load``: optional uniform load (qx, qy, qz) [N/m] added to the weight
+    (:class:`vfife.model.Model`; the starting shape ignores it).
 
     Per mesh of the sequence (module docstring): its start (the catenary on the first,
     the coarser equilibrium interpolated on the next), its model and step
@@ -371,7 +373,7 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
         else:
             X, D, tensions = interpolated_start(scene, model, mesh)
         new, dt, limit, steps, iinfo = stage_model(scene, mesh, X, D, tensions, tension,
-                                                   knobs, planar)
+                                                   knobs, planar, dead_load)
         # the coarse stage only provides a starting shape: at most half of the budget
         budget = knobs.max_steps - total_steps
         if si < len(stages) - 1:

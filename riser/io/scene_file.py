@@ -151,6 +151,9 @@ def scene_from_dict(data: dict, source: str = "<scene>") -> Scene:
     values.update(env.fields(Scene, "environment"))
     cur_t = env.table("current")
     if cur_t is not None:
+        if cur_t.has("heading_deg") and cur_t.has("headings_deg"):
+            raise cur_t.error("headings_deg", "give heading_deg (one direction) or "
+                              "headings_deg (one per height), not both")
         values["current"] = _read_part(cur_t, Current)
     env.finish()
 

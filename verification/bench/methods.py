@@ -22,6 +22,9 @@ WANG_CURRENTS = ("wang2014-current-neg1p5", "wang2014-current-neg0p75",
 LAZY_WAVE = "yu2021-a3"
 #: the single-section scenes the bench times with the analytic method and the BVP
 ANALYTIC_BENCH_SCENES = ("scr-steel", "kang2015-jlay")
+#: the BVP's 3D rod against its planar solve (same solution) and on 3D scenes (issue 32)
+ROD_PLANAR = ("scr-steel", "yu2021-a3", "wang2014-current-1p5")
+ROD_3D = ("scr-steel-current-90", "yu2021-a3-current-90", "yu2021-a3-current-turning")
 
 
 def bench_scene() -> Scene:
@@ -44,6 +47,10 @@ def run(out: Path) -> dict:
     # lazy wave's buoyancy as discrete modules; each solve in a fresh process
     from bvp.bench import segment_scaling
     bench["bvp_segments"] = segment_scaling(resolve(LAZY_WAVE), resolve(WANG_BASELINE))
+    # the BVP's 3D rod against its planar solve on planar scenes, and on 3D ones (issue 32)
+    from bvp.bench import rod_ratios
+    bench["bvp_rod"] = rod_ratios([resolve(n) for n in ROD_PLANAR],
+                                  [resolve(n) for n in ROD_3D])
     # the analytic method against the BVP on the same single-section scenes, side by side
     single = [resolve(n) for n in ANALYTIC_BENCH_SCENES]
     a_t, b_t = analytic_times(single), bvp_times(single)
@@ -67,4 +74,7 @@ def summary_lines(bench: dict) -> list[str]:
     if "bvp_segments" in bench:
         from bvp.bench import scaling_lines
         lines.extend(scaling_lines(bench["bvp_segments"]))
+    if "bvp_rod" in bench:
+        from bvp.bench import rod_lines
+        lines.extend(rod_lines(bench["bvp_rod"]))
     return lines

@@ -69,6 +69,12 @@ def summary_lines(sm: dict, dynamic: bool = False) -> list[str]:
                  f"{with_unit(sm['max_tension'], 'N')}, max moment "
                  f"{with_unit(sm['max_moment'], 'N m', decimals=3)} at s = "
                  f"{length(sm['max_moment_s'], decimals=1)} m")
+    if sm.get("max_lateral_offset") is not None:        # a 3D scene
+        lines.append(f"  {'static: ' if dynamic else ''}largest lateral excursion "
+                     f"{length(sm['max_lateral_offset'])} m from the plane of the ends at "
+                     f"s = {length(sm['max_lateral_offset_s'], decimals=1)} m; max "
+                     "out-of-plane moment "
+                     f"{with_unit(sm['max_moment_out_of_plane'], 'N m', decimals=3)}")
     return lines
 
 

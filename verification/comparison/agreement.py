@@ -3,7 +3,12 @@
 The profiles are compared at the same arc length over the range both cover, at the VFIFE
 nodes (where VFIFE defines its results), the BVP (stations every sqrt(EI/T)/8, at most
 0.5 m) interpolated there; tension is the effective tension and moment the in-plane
-bending moment signed with the curvature. Two artefacts of comparing a 1 m VFIFE mesh with
+bending moment signed with the curvature. A 3D scene (both profiles carry the lateral
+offset from the line's plane) compares the moment vector: the row ``moment`` is the
+largest magnitude of the difference of its two components across the tangent (in and out
+of the plane, riser.frame.plane_columns), and adds the rows of the lateral offset (its
+largest excursion, at the touchdown, the crests and the sags) and of the out-of-plane
+moment (along s and its largest magnitude). Two artefacts of comparing a 1 m VFIFE mesh with
 a continuous solution are kept out of the metrics, each measured (issue 11):
 
 - VFIFE values between its nodes are only a linear interpolation: taking them at the BVP
@@ -46,7 +51,8 @@ AGREEMENT_COLUMNS = ("quantity", "bvp", "vfife", "abs_diff", "rel_diff", "tolera
 
 #: the rows of the bending moment: not judged on a line whose bending the elements cannot
 #: resolve (see ``moment_reason`` of :func:`agreement`)
-MOMENT_ROWS = ("moment", "max_moment", "max_moment_s")
+MOMENT_ROWS = ("moment", "max_moment", "max_moment_s", "moment_out_of_plane",
+               "max_moment_out_of_plane")
 
 
 def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
@@ -76,9 +82,9 @@ def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
     Mmax = max(float(np.max(bvp_prof.moment)), 1e-12)
     scales = {"depth": depth, "max_tension": Tmax, "max_moment": Mmax}
 
-    def add(name, b, v, diff=None, at_s=None, note="", curvature=None):
+    def add(name, b, v, diff=None, at_s=None, note="", curvature=None, slope=0.0):
         """A row; ``diff`` is the signed difference (default v - b)."""
-        t = tolerance(name, bvp_value=b, curvature=curvature, **scales)
+        t = tolerance(name, bvp_value=b, curvature=curvature, slope=slope, **scales)
         row = {"quantity": name, "bvp": b, "vfife": v, "unit": unit(name), "at_s": at_s,
                "note": note,
                "tol_label": t["label"], "basis_label": t["basis_label"], "basis": t["basis"],
@@ -103,10 +109,23 @@ def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
     ref = (nodal_average(vf.s, bvp_prof.s, bvp_prof.tension) if nodal
            else np.interp(vf.s, bvp_prof.s, bvp_prof.tension))
     dT = vf.tension[sel] - ref[sel]
-    dM = signed_moment(vf)[sel] - np.interp(grid, bvp_prof.s, signed_moment(bvp_prof))
+    three_d = bvp_prof.is_3d and vf.is_3d
+    if three_d:
+        # the moment vector's two components across the tangent, compared component by
+        # component (its magnitude has a kink where it changes sign): the row is the
+        # magnitude of the difference vector
+        dMi = vf.moment_in_plane[sel] - np.interp(grid, bvp_prof.s, bvp_prof.moment_in_plane)
+        dMo = (vf.moment_out_of_plane[sel]
+               - np.interp(grid, bvp_prof.s, bvp_prof.moment_out_of_plane))
+        dM = np.hypot(dMi, dMo)
+    else:
+        dM = signed_moment(vf)[sel] - np.interp(grid, bvp_prof.s, signed_moment(bvp_prof))
     for name, d in (("tension", dT), ("moment", dM)):
         i = int(np.argmax(np.abs(d)))
         add(name, None, None, diff=float(d[i]), at_s=float(grid[i]))
+    if three_d:
+        i = int(np.argmax(np.abs(dMo)))
+        add("moment_out_of_plane", None, None, diff=float(dMo[i]), at_s=float(grid[i]))
 
     add("hang_off_tension", sb["hang_off_tension"], sv["hang_off_tension"])
     if "hang_off_wall_tension" in sb and "hang_off_wall_tension" in sv:
@@ -115,13 +134,22 @@ def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
     if sb["tdp_x"] is not None:
         add("tdp_x", sb["tdp_x"], sv["tdp_x"])
         add("tdp_tension", sb["tdp_tension"], sv["tdp_tension"])
+        if three_d and sb["tdp_lateral"] is not None:
+            add("tdp_lateral", sb["tdp_lateral"], sv["tdp_lateral"])
+    if three_d:
+        add("max_lateral_offset", sb["max_lateral_offset"], sv["max_lateral_offset"],
+            note=f"at s = {sb['max_lateral_offset_s']:.1f} m (BVP)")
+    lateral_slope = (np.gradient(bvp_prof.lateral, bvp_prof.s) if three_d else None)
     for kind in ("crests", "sags"):
         tag = kind[:-1]
         for i, cb in enumerate(sb[kind]):
-            cv = match_feature(cb, sv[kind]) or {"height": None, "s": None}
+            cv = match_feature(cb, sv[kind]) or {"height": None, "s": None, "lateral": None}
+            kappa = float(np.interp(cb["s"], bvp_prof.s, bvp_prof.curvature))
             add(f"{tag}{i + 1}_height", cb["height"], cv["height"])
-            add(f"{tag}{i + 1}_s", cb["s"], cv["s"],
-                curvature=float(np.interp(cb["s"], bvp_prof.s, bvp_prof.curvature)))
+            add(f"{tag}{i + 1}_s", cb["s"], cv["s"], curvature=kappa)
+            if three_d:
+                add(f"{tag}{i + 1}_lateral", cb["lateral"], cv["lateral"], curvature=kappa,
+                    slope=float(np.interp(cb["s"], bvp_prof.s, lateral_slope)))
         if len(sv[kind]) != len(sb[kind]):
             n_b, n_v = len(sb[kind]), len(sv[kind])
             rows.append({"quantity": f"{kind}_count", "bvp": n_b, "vfife": n_v, "unit": "-",
@@ -129,6 +157,9 @@ def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
                          "tolerance": 0, "tol_label": "equal", "basis_label": "",
                          "basis": None, "at_s": None, "pass": False})
     add("max_moment", sb["max_moment"], sv["max_moment"])
+    if three_d:
+        add("max_moment_out_of_plane", sb["max_moment_out_of_plane"],
+            sv["max_moment_out_of_plane"])
     tol_peak, _ = tolerance_value("max_moment", bvp_value=sb["max_moment"], depth=depth,
                                   max_tension=Tmax, max_moment=Mmax)
     off = peak_location_offset(bvp_prof, vf, tol_peak)

@@ -92,7 +92,9 @@ def report_markdown(comp: Comparison, heading: str = "#") -> str:
     ]
     lines += [f"- {n}" for n in comp.notes]
     lines += [
-        f"- BVP: {b.message}, {b.info.get('nodes')} nodes, {b.wall_time_s:.2f} s.",
+        f"- BVP: {b.message}, {b.info.get('nodes')} nodes, {b.wall_time_s:.2f} s"
+        + (f", {b.info['formulation']}" if b.profile is not None and b.profile.is_3d
+           else "") + ".",
         f"- VFIFE: {v.message}; {v.info.get('elements')} elements of "
         f"{fmt(v.info.get('element_length'), 4)} m, time step "
         f"{fmt(v.info.get('time_step'), 4)} s, {v.wall_time_s:.2f} s.",
@@ -100,9 +102,15 @@ def report_markdown(comp: Comparison, heading: str = "#") -> str:
         f"({'water depth' if sc.water_depth else 'hang-off height; the scene gives no depth'}).",
         "",
         "Both methods report effective tension and bending moment, compared at the same "
-        "arc length: at the VFIFE nodes, the BVP interpolated there (the BVP tension "
-        "sampled at the VFIFE element midpoints and averaged to the nodes, as VFIFE reports "
-        "its element forces). Differences are signed VFIFE - BVP; `relative` divides "
+        "arc length: at the VFIFE nodes, the BVP interpolated there (both as point values: "
+        "the VFIFE recovers its nodal tension to second order, each side of a joint "
+        "extrapolating its own elements)." + (
+            " The scene is 3D: its line's plane is the vertical plane through the anchor "
+            "and the hang-off, the lateral rows are offsets from it, and the moment is "
+            "compared as a vector (the row `moment` is the largest magnitude of the "
+            "difference of its components in and out of that plane)."
+            if b.profile is not None and b.profile.is_3d else "") +
+        " Differences are signed VFIFE - BVP; `relative` divides "
         "them by the basis of the row's tolerance (depth, T_max or M_max of the BVP, or the BVP value itself); the "
         "configuration is a distance (unsigned); values below "
         f"{ROUND_OFF:g} of their basis are round-off and printed as 0. The tolerances and "
@@ -134,7 +142,9 @@ def report_markdown(comp: Comparison, heading: str = "#") -> str:
                                    "relative", "relative, matched model", "within tolerance"],
                                   rows))
         else:
-            lines.append(f"The paper-model BVP did not converge: {comp.paper.message}")
+            how = ("does not apply (refused)" if comp.paper.status.value == "refused"
+                   else f"did not converge ({comp.paper.status.value})")
+            lines.append(f"The paper-model BVP {how}: {comp.paper.message}")
     lines += ["", f"{heading}# Figures", "", "![configurations](configurations.png)", "",
               "![tension, moment, shear](forces.png)", "", "![differences](differences.png)", "",
               "Files: `agreement.csv` (columns " + ", ".join(f"`{c}`" for c in comp.frame().columns)

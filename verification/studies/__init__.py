@@ -17,8 +17,8 @@ from .study import Study
 
 #: study name -> its module, in the order ``reproduce all`` lists them
 STUDY_MODULES = {name: f"verification.studies.{name}" for name in (
-    "wang2014", "yu2021", "liu2021", "kang2015", "compare", "stress", "cost", "modes",
-    "dynamics")}
+    "wang2014", "yu2021", "liu2021", "kang2015", "compare", "cross_current", "stress", "cost",
+    "modes", "dynamics")}
 #: the study names (``riser-verify reproduce NAME``)
 STUDIES = tuple(STUDY_MODULES)
 def study(name: str) -> Study:

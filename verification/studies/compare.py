@@ -18,11 +18,16 @@ from verification.comparison.report import write
 from .study import Study
 
 #: scenes with a comparison report in reports/compare/ (every built-in scene but the hard
-#: cases, which are the stress suite's)
+#: cases, which are the stress suite's, and the flow case, liu2021's)
 COMPARE_SCENES = ("wang2014-baseline", "wang2014-current-neg1p5", "wang2014-current-neg0p75",
                   "wang2014-current-0p75", "wang2014-current-1p5", "scr-steel",
                   "yu2021-a1", "yu2021-a2", "yu2021-a2-sheared", "yu2021-a3", "yu2021-a4",
-                  "kang2015-jlay")
+                  "kang2015-jlay",
+                  # 3D (issue 32): currents out of the plane of the ends, turning with depth,
+                  # a hang-off out of the anchor's plane
+                  "scr-steel-current-45", "scr-steel-current-90", "scr-steel-current-turning",
+                  "yu2021-a3-current-45", "yu2021-a3-current-90", "yu2021-a3-current-turning",
+                  "yu2021-a3-hang-off-offset")
 
 
 def run_unit(scene_name: str, out: Path, note: str = "", full: bool = False) -> str:
@@ -68,5 +73,9 @@ STUDY = Study("compare", COMPARE_SCENES, run_unit, index_row,
               seconds={"yu2021-a4": 12, "wang2014-current-neg1p5": 7, "wang2014-current-neg0p75": 7,
                        "wang2014-current-0p75": 7, "wang2014-current-1p5": 7, "yu2021-a2": 6,
                        "yu2021-a2-sheared": 6, "yu2021-a3": 5, "wang2014-baseline": 4,
-                       "yu2021-a1": 2, "scr-steel": 2, "kang2015-jlay": 6})
+                       "yu2021-a1": 2, "scr-steel": 2, "kang2015-jlay": 6,
+                       "scr-steel-current-45": 8, "scr-steel-current-90": 7,
+                       "scr-steel-current-turning": 9, "yu2021-a3-current-45": 8,
+                       "yu2021-a3-current-90": 8, "yu2021-a3-current-turning": 13,
+                       "yu2021-a3-hang-off-offset": 9})
 

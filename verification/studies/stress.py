@@ -3,7 +3,7 @@
 For each scene in ``verification/scenes/hard/`` and each method the outcome is one of
 
 - ``converged``: the solver met its own test, and the checks below pass;
-- ``refused``: the scene is outside the method (e.g. out-of-plane current for the BVP),
+- ``refused``: the scene is outside the method (e.g. a second touchdown for the BVP),
   said with a clear message before solving;
 - ``no equilibrium``: the solver stopped with evidence that the static problem of that
   form has no solution (e.g. the touchdown tension driven to zero under the load);

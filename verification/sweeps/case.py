@@ -32,12 +32,12 @@ from pathlib import Path
 import numpy as np
 
 from riser.errors import SceneError, SolveFailed
-from riser.profile import Profile, summarize, write_json
+from riser.profile import OPTIONAL_COLUMNS, Profile, summarize, write_json
 
 #: the scalar summary quantities kept per method (riser.profile.summarize's names)
 SUMMARY_KEYS = ("hang_off_tension", "hang_off_angle_deg", "max_tension", "max_tension_s",
                 "min_tension", "max_moment", "max_moment_s", "max_shear", "tdp_x",
-                "tdp_tension", "span", "length")
+                "tdp_tension", "span", "length", "max_lateral_offset", "max_lateral_offset_s")
 #: the agreement rows copied into cases.csv, besides the worst row: their rel_diff (over
 #: the row's basis), and for the touchdown its difference in metres (its tolerance is a
 #: length, not a fraction)
@@ -50,15 +50,18 @@ ERROR = "error"
 def _profile_lists(p: Profile) -> dict:
     out = {name: np.asarray(getattr(p, name), float).tolist() for name in _FIELDS}
     out["tdp_s"] = p.tdp_s
-    out["wall_tension"] = None if p.wall_tension is None else p.wall_tension.tolist()
+    for name in OPTIONAL_COLUMNS:
+        v = getattr(p, name)
+        out[name] = None if v is None else v.tolist()
     return out
 
 
 def profile_of(d: dict) -> Profile:
     """The :class:`Profile` of a record's lists (:func:`_profile_lists`)."""
     return Profile(**{name: np.asarray(d[name], float) for name in _FIELDS},
-                   tdp_s=d["tdp_s"], wall_tension=None if d.get("wall_tension") is None
-                   else np.asarray(d["wall_tension"], float))
+                   tdp_s=d["tdp_s"],
+                   **{name: None if d.get(name) is None else np.asarray(d[name], float)
+                      for name in OPTIONAL_COLUMNS})
 
 
 def _solve(scene, method: str) -> tuple[dict, object]:

@@ -17,7 +17,14 @@ Coordinates: the scene's x -> MoorDyn X, the scene's y (up from the seabed) -> Z
 WtrDpth, the scene's z -> -Y (both frames right-handed). The seabed: kBot = k / d of the
 bottom line, cBot from the damping fraction (see :mod:`riser.io.moordyn.scene_from_deck`, the exact
 inverse). A current is written to ``current_profile.txt`` (``Currents 1``), which MoorDyn
-reads from the deck's folder.
+reads from the deck's folder: the velocity's components (u_x, -u_z, 0) at each of the
+scene's heights, which MoorDyn interpolates component by component as the scene does.
+
+A 3D scene (a hang-off out of the anchor's plane: ends given as (x, y, z); a current out of
+the x-y plane or turning with depth) is written with the same mapping: its points at their
+3D positions, its current row by row. The importer turns the vertical plane through the
+ends into the x-y plane, so export then import gives back the line and the current turned
+by the plane's heading.
 """
 
 from __future__ import annotations
@@ -142,18 +149,17 @@ def export_scene(scene: Scene, *, segment_length: float | None = None,
     def md(x, y, z=0.0):
         return (x, -z, y - depth)
 
-    ax, ay = scene.ends.anchor
-    hx, hy = scene.ends.hang_off
+    a, b = scene.ends.anchor_point, scene.ends.hang_off_point
     s_edges = [props[g[1][0]].s_start for g in groups] + [props[-1].s_end]
     total = s_edges[-1]
-    pts = [md(ax, ay)]
+    pts = [md(*a)]
     for k in range(1, len(groups)):
         if joints is not None:
             pts.append(md(*joints[k - 1]))
         else:
             f = s_edges[k] / total
-            pts.append(md(ax + f * (hx - ax), ay + f * (hy - ay)))
-    pts.append(md(hx, hy))
+            pts.append(md(*(p + f * (q - p) for p, q in zip(a, b))))
+    pts.append(md(*b))
     kinds = ["Fixed"] + ["Free"] * (len(groups) - 1) + [hang_off]
     deck.points = [DeckPoint(i + 1, kind, *p) for i, (kind, p) in enumerate(zip(kinds, pts))]
     spans = []
@@ -215,15 +221,26 @@ def _options(scene: Scene, deck: Deck, sec0: tuple, depth: float, notes: list[st
 
 
 def _current_profile(scene: Scene, depth: float) -> str:
-    """MoorDyn's current_profile.txt: three header lines, then 'z ux uy uz' rows."""
+    """MoorDyn's current_profile.txt: three header lines, then 'z ux uy uz' rows, the
+    velocity's components at each of the scene's heights (MoorDyn interpolates them
+    component by component, as the scene does: :meth:`riser.environment.Current.velocity`),
+    the scene's (x, z) mapped to MoorDyn's (X, -Y)."""
     cur = scene.current
-    h = math.radians(cur.heading_deg)
+    if cur.turns:
+        what = ("turning with depth, headings " + ", ".join(f"{h:g}" for h in cur.headings)
+                + " deg")
+        ux, uz = cur.components
+        rows = zip(cur.heights, ux, uz)
+    else:       # one heading: today's arithmetic, the same digits as before 3D scenes
+        what = f"speeds along heading {cur.heading_deg:g} deg"
+        h = math.radians(cur.heading_deg)
+        rows = ((y, u * math.cos(h), u * math.sin(h)) for y, u in zip(cur.heights, cur.speeds))
     lines = ["--------------------- MoorDyn steady currents File ---------------------",
-             f"Current of scene {scene.name}: speeds along heading {cur.heading_deg:g} deg, "
-             "piecewise linear in depth, constant beyond",
+             f"Current of scene {scene.name}: {what}, piecewise linear in depth, constant "
+             "beyond",
              "z (m), ux (m/s), uy (m/s), uz (m/s)"]
-    for y, u in zip(cur.heights, cur.speeds):
-        lines.append(f"{y - depth!r} {u * math.cos(h)!r} {-u * math.sin(h)!r} 0.0")
+    for y, ux, uz in rows:
+        lines.append(f"{y - depth!r} {float(ux)!r} {-float(uz)!r} 0.0")
     return "\n".join(lines) + "\n"
 
 

@@ -23,7 +23,12 @@ the seabed, so y = Z + WtrDpth):
   a fraction of critical, cBot d / (2 sqrt(k (m + m_a))) (the VFIFE definition); the
   friction is FrictionCoefficient;
 - a steady current (``Currents 1``) is read from current_profile.txt beside the deck
-  (MoorDyn's convention): rows ``z ux uy uz``, one direction at every depth;
+  (MoorDyn's convention): rows ``z ux uy uz`` with uz = 0, the horizontal velocity
+  (ux, uy) turned into the scene's frame (x along the ends' horizontal direction, z =
+  x cross y): one direction at every depth gives ``heading_deg`` and speeds signed along
+  it; a profile that turns with depth gives ``headings_deg`` (one per row) and the
+  speeds (magnitudes). Points and current are turned alike, so a deck turned about Z
+  imports to the same scene;
 - the options as MoorDyn-C 2.7 reads them (:mod:`riser.io.moordyn.options`): its defaults
   g = 9.80665 m/s2 and a density of 1025 kg/m3 when the deck gives none, the water depth
   lowered to the deepest point as MoorDyn-C lowers it. Where each value came from is
@@ -362,12 +367,30 @@ def _current(deck: Deck, opts: Options, path: Path, ex, depth: float,
     if umax == 0.0:
         return None
     dx, dz = ref[1] / umax, ref[2] / umax
-    for y, ux, uz, no in table:
-        if abs(ux * dz - uz * dx) > 1e-9 * umax:
-            raise DeckError(where, no, "the current turns with depth; a scene's current has "
-                            "one heading (speeds of either sign along it)")
+    if any(abs(ux * dz - uz * dx) > 1e-9 * umax for _, ux, uz, _ in table):
+        return _turning(table, path, notes)
     heading = math.degrees(math.atan2(dz, dx))
     notes.append(f"Current from {path.name}: heading {heading:.6g} deg from the scene's x "
                  "towards its z.")
     return {"heights": [r[0] for r in table], "speeds": [r[1] * dx + r[2] * dz for r in table],
             "heading_deg": heading}
+
+
+def _turning(table: list[tuple], path: Path, notes: list[str]) -> dict:
+    """A profile that turns with depth: ``headings_deg``, the heading of each row's
+    (ux, uz) from the scene's x towards its z, and its speed, the magnitude (a row without
+    current takes the heading of the nearest row with one, below it first: its
+    components stay 0, and no turn is invented)."""
+    speeds = [math.hypot(ux, uz) for _, ux, uz, _ in table]
+    headings = [math.degrees(math.atan2(uz, ux)) if v else None
+                for (_, ux, uz, _), v in zip(table, speeds)]
+    for i, h in enumerate(headings):
+        if h is None:
+            near = sorted((k for k, hk in enumerate(headings) if hk is not None),
+                          key=lambda k: (abs(k - i), k > i))
+            headings[i] = headings[near[0]]
+    notes.append(f"Current from {path.name}: it turns with depth, headings "
+                 f"{min(headings):.6g} to {max(headings):.6g} deg (from the scene's x "
+                 "towards its z): headings_deg, one per height, the velocity interpolated "
+                 "component by component as MoorDyn does.")
+    return {"heights": [r[0] for r in table], "speeds": speeds, "headings_deg": headings}

@@ -51,18 +51,33 @@ def fixed_scene(scene: Scene) -> tuple[Scene, float, str]:
     return eq.scene, eq.s_shift, eq.note
 
 
+def statics_planar(scene: Scene) -> bool:
+    """True when the static state lies in the x-y plane: the ends in one plane z = const
+    and the current in the x-y plane at every height (a top motion along z, which makes
+    ``Scene.is_planar`` False, moves nothing in statics)."""
+    e, cur = scene.ends, scene.current
+    return ((not isinstance(e, FixedEnds) or e.in_plane)
+            and (cur is None or cur.is_planar))
+
+
 def joint_guess(scene: Scene, spans, profile=None) -> tuple[list | None, str]:
     """Scene (x, y, z) of the joints between MoorDyn lines, from ``profile`` (a solved
-    profile of the fixed-ends scene) or a BVP solve of it; (None, reason) when neither is
-    available (the export then puts them on the chord)."""
+    profile of the fixed-ends scene) or a solve of it (the BVP's; the VFIFE's for a 3D
+    scene, which the BVP does not solve); (None, reason) when neither is available (the
+    export then puts them on the chord)."""
     if len(spans) < 2:
         return None, "no joints"
     how = "the given profile"
     if profile is None:
-        res = pipeline.solve_scene(scene, "bvp")
+        method = "bvp" if statics_planar(scene) else "vfife"
+        try:
+            res = pipeline.solve_scene(scene, method)
+        except Exception as exc:    # noqa: BLE001 - only MoorDyn's first guess depends on it
+            return None, f"the chord (the {method.upper()} failed: {exc})"
         if not res.converged:
-            return None, f"the chord (the BVP did not converge: {res.status.value})"
-        profile, how = res.profile, "the BVP solution"
+            return None, (f"the chord (the {method.upper()} did not converge: "
+                          f"{res.status.value})")
+        profile, how = res.profile, f"the {method.upper()} solution"
     s = np.array([a for a, _ in spans[1:]])
     pts = [tuple(float(np.interp(si, profile.s, getattr(profile, c))) for c in "xyz")
            for si in s]

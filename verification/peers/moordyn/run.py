@@ -8,8 +8,10 @@ How MoorDyn is run (MoorDyn-C 2.7, measured in issue 17):
   mean acceleration stalls, which with bending happens long before equilibrium, so the deck
   sets ``threshIC`` tiny and the run is bounded by ``TmaxIC`` [s of pseudo-time] instead;
   the result is then checked here, not trusted: the **force residual** is the largest net
-  force on an interior node over that node's submerged weight |w| l (MoorDyn's
-  ``GetLineNodeForce``, which sums tension, bending, weight, seabed and drag).
+  force on an interior node (MoorDyn's ``GetLineNodeForce``, which sums tension, bending,
+  weight, seabed and drag) over that node's load q l, q its submerged weight |w| or, when
+  larger, its normal drag in the largest current speed (a light line held out by the
+  current).
 - **A current** is not applied by MoorDyn's static solver (MoorDyn-C 2.7 runs it without
   water kinematics): the state is then time-stepped with the current on (RK2, at 0.3 of
   MoorDyn's CFL-0.5 step: that step is unstable in dynamics on a riser with bending) until
@@ -23,6 +25,14 @@ How MoorDyn is run (MoorDyn-C 2.7, measured in issue 17):
   it in ``info``; curvature ``GetLineNodeCurv`` (4 sin(a/2)/(l1 + l2), 0 at pinned ends
   and at joints, which are hinges); moment = EI x curvature, signed with the turning
   direction in the x-y plane.
+- **A 3D scene** (the hang-off out of the anchor's plane, a current out of the x-y plane
+  or turning with depth) runs the same way: the deck holds the 3D points and current
+  (:mod:`riser.io.moordyn.deck_from_scene`) and MoorDyn solves in 3D. Its profile then
+  carries ``lateral``, ``moment_in_plane`` and ``moment_out_of_plane``
+  (:func:`riser.frame.plane_columns`): MoorDyn gives no moment vector, so the node's is
+  rebuilt as its Line.cpp bends the node, EI x GetLineNodeCurv about the axis q_{i-1} x
+  q_i of its two segments' directions (0 at the ends and joints, where the curvature
+  is), with the node's tangent along q_{i-1} + q_i; the shear is |dM/ds| of that vector.
 
 MoorDyn prints to the process's stdout from C++; everything it prints goes to
 ``moordyn.log`` in the run's folder instead.
@@ -40,14 +50,15 @@ from pathlib import Path
 import numpy as np
 
 from riser.errors import SceneError
+from riser.frame import LinePlane, plane_columns
 from riser.profile import Profile
 from riser.result import Status
 from riser.scene import Scene
 from vfife.dynamic_outputs import touchdown_s
 
-from .deck import DeckFiles, export
+from .deck import DeckFiles, export, statics_planar
 
-#: the force residual (net force on an interior node / its submerged weight) accepted as
+#: the force residual (net force on an interior node / its load, :func:`_residual`) accepted as
 #: static equilibrium: 1 % of a node's weight moves the tension by far less than the
 #: comparison's tolerances (measured: 0.02 % of the hang-off tension on the SCR)
 RESIDUAL_TOL = 0.01
@@ -197,13 +208,13 @@ def run(scene: Scene, folder: Path, *, segment_length: float = 10.0, profile=Non
         return PeerRun(Status.NOT_CONVERGED, f"MoorDyn's static solver stopped after "
                        f"{pseudo:g} s of pseudo-time ({wall:.1f} s; {spent:.1f} s in all, "
                        f"budget {budget:g} s) with a force residual of {100 * res:.2g} % of "
-                       f"a node's weight (accepted: {100 * RESIDUAL_TOL:g} %); raise the "
+                       f"a node's load (accepted: {100 * RESIDUAL_TOL:g} %); raise the "
                        "budget or coarsen the segments", prof, info, files)
     how = (f"settled in the current after {info['settle_sim_s']:g} s simulated "
            f"({info['settle_wall_s']:.1f} s)" if fixed.current is not None else
            f"static solver {pseudo:g} s of pseudo-time ({wall:.1f} s; {spent:.1f} s in all)")
     return PeerRun(Status.CONVERGED, f"{how}, force residual {100 * res:.2g} % "
-                   "of a node's weight", prof, info, files)
+                   "of a node's load", prof, info, files)
 
 
 def _nodes(moordyn, line):
@@ -212,21 +223,27 @@ def _nodes(moordyn, line):
 
 
 def _residual(moordyn, lines, scene: Scene, files: DeckFiles) -> float:
-    """Largest |net force| on an interior node over its submerged weight |w| l."""
+    """Largest |net force| on an interior node over its load q l, q the larger of the
+    segment's submerged weight |w| and its normal drag in the largest current speed
+    (drag_normal_coef U_max^2 [N/m]; the weight alone unless a neutrally buoyant or light
+    line is held out by the current)."""
     worst = 0.0
     for line, idx in zip(lines, files.export.line_segments):
         n = moordyn.GetLineN(line)
-        w = abs(_weight(scene, idx[0]))
+        q = _load(scene, idx[0])
         length = moordyn.GetLineUnstretchedLength(line) / n
         for i in range(1, n):
             f = np.linalg.norm(moordyn.GetLineNodeForce(line, i))
-            worst = max(worst, f / max(w * length, 1e-9))
+            worst = max(worst, f / max(q * length, 1e-9))
     return float(worst)
 
 
-def _weight(scene: Scene, seg: int) -> float:
+def _load(scene: Scene, seg: int) -> float:
+    """The load per metre [N/m] a node's residual is measured against (:func:`_residual`)."""
     from riser.sections import segment_properties
-    return segment_properties(scene)[seg].weight
+    p = segment_properties(scene)[seg]
+    u = 0.0 if scene.current is None else scene.current.max_abs_speed
+    return max(abs(p.weight), p.drag_normal_coef * u * u)
 
 
 def _settle(moordyn, system, lines, scene, files, info, limit, log, now):
@@ -298,7 +315,27 @@ def _profile(moordyn, lines, scene: Scene, files: DeckFiles, info: dict) -> Prof
     turn[1:-1] = np.sign(seg_dir[:-1, 0] * seg_dir[1:, 2] - seg_dir[:-1, 2] * seg_dir[1:, 0])
     curvature = np.array(K)
     moment = np.array(EI) * curvature
-    shear = np.abs(np.gradient(moment * np.where(turn < 0, -1.0, 1.0), s))
     tdp = touchdown_s(s, y, scene.seabed is not None)
+    if statics_planar(scene):
+        shear = np.abs(np.gradient(moment * np.where(turn < 0, -1.0, 1.0), s))
+        return Profile(s=s, x=x, y=y, z=z, theta=theta, tension=tension, moment=moment,
+                       shear=shear, curvature=curvature, tdp_s=tdp)
+    # 3D: MoorDyn's bending moment vector at a node, EI kappa along q_{i-1} x q_i (the
+    # rotation axis its Line.cpp bends about), and the tangents, both to the scene's axes
+    axis = np.zeros_like(pos)
+    axis[1:-1] = np.cross(seg_dir[:-1], seg_dir[1:])
+    norm = np.linalg.norm(axis, axis=1)
+    axis /= np.where(norm > 1e-300, norm, 1.0)[:, None]
+    m_vec = _to_scene(moment[:, None] * axis)
+    shear = np.linalg.norm(np.gradient(m_vec, s, axis=0), axis=1)
+    unit = tang / np.linalg.norm(tang, axis=1)[:, None]
+    lateral, inplane, oop = plane_columns(LinePlane.of(scene), x, z, _to_scene(unit), m_vec)
     return Profile(s=s, x=x, y=y, z=z, theta=theta, tension=tension, moment=moment,
-                   shear=shear, curvature=curvature, tdp_s=tdp)
+                   shear=shear, curvature=curvature, tdp_s=tdp, lateral=lateral,
+                   moment_in_plane=inplane, moment_out_of_plane=oop)
+
+
+def _to_scene(v: np.ndarray) -> np.ndarray:
+    """Vectors (n, 3) in MoorDyn's (X, Y, Z) -> the scene's (x, y, z) = (X, Z, -Y) (a
+    rotation: cross products map alike)."""
+    return np.stack([v[:, 0], v[:, 2], -v[:, 1]], axis=1)
