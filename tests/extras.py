@@ -1,7 +1,8 @@
 """Markers of the tests that need an optional extra (shared by the test files).
 
 ``needs_dask``: skip, with the reason, when the extra ``[cluster]`` (dask.distributed) is
-not installed."""
+not installed; ``needs_moordyn``: the same for the extra ``[moordyn]`` (MoorDyn-C v2), in
+a file whose other tests run without it."""
 
 from __future__ import annotations
 
@@ -14,3 +15,11 @@ except ImportError:
 
 needs_dask = pytest.mark.skipif(distributed is None, reason="the optional extra [cluster] "
                                 "(dask.distributed) is not installed")
+
+try:
+    import moordyn
+except ImportError:
+    moordyn = None
+
+needs_moordyn = pytest.mark.skipif(moordyn is None, reason="the optional extra [moordyn] "
+                                   "(MoorDyn-C v2) is not installed")

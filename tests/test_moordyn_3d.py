@@ -29,13 +29,7 @@ from riser.sections import segment_properties
 from verification.catalog import resolve
 from verification.cli import main
 
-try:
-    import moordyn
-except ImportError:
-    moordyn = None
-
-needs_moordyn = pytest.mark.skipif(moordyn is None, reason="the optional extra [moordyn] "
-                                   "(MoorDyn-C v2) is not installed")
+from extras import needs_moordyn
 
 RTOL = 1e-12        # repr-exact numbers: only the trigonometry and the sqrt round
 
