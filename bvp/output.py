@@ -115,7 +115,7 @@ def stations(prob, sol, parts: list, grounded: float, peaks):
     function ``peaks(layout, sol, tau, rows) -> tau`` adds; s from the bottom end,
     ``grounded`` [m] ahead of the solved line (the rigid form's straight part)."""
     model = prob.model
-    n = prob.block
+    n = model.block
     Tpeak = max(abs(float(np.max(sol.y[IT::n]))) * model.scale[IT], 1.0)
     step = float(np.clip(float(np.min(np.sqrt(model.EI / Tpeak))) / 8.0, 0.05, 0.5))
     for i, pc in enumerate(parts):

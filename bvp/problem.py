@@ -51,7 +51,6 @@ class _Problem:
     guess: object = None               # callable(tau) -> scaled state (6 blocks, m)
     joints: np.ndarray = None          # s [m] of the scene's joints (merged ones included)
     segments: int = 1                  # the scene's segment count
-    block: int = NSTATE                # states per block (10: the 3D rod, bvp/rod_problem.py)
     plane: object = None               # the 3D rod's riser.frame.LinePlane (None: planar)
 
     def mesh(self, nodes: int) -> np.ndarray:

@@ -48,18 +48,15 @@ def plane_current(scene: Scene, plane: LinePlane):
     cur = scene.current
     if cur is None:
         return None, None, False
-    c, s = math.cos(plane.psi), math.sin(plane.psi)
 
     def velocity(y):
-        ux, uz = cur.velocity(y)
-        return c * ux + s * uz, -s * ux + c * uz
+        return plane.vector_to_plane(*cur.velocity(y))
 
     def gradient(y):
-        ux, uz = cur.velocity_gradient(y)
-        return c * ux + s * uz, -s * ux + c * uz
+        return plane.vector_to_plane(*cur.velocity_gradient(y))
 
-    ux, uz = cur.components
-    return velocity, gradient, bool(np.any(np.abs(-s * ux + c * uz) > 0.0))
+    across = plane.vector_to_plane(*cur.components)[1]
+    return velocity, gradient, bool(np.any(np.abs(across) > 0.0))
 
 
 def build_rod_problem(scene: Scene, split: bool = True, dead_load=None) -> _Problem:
@@ -74,8 +71,8 @@ def build_rod_problem(scene: Scene, split: bool = True, dead_load=None) -> _Prob
     dead = None
     if dead_load is not None:
         qx, qy, qz = (float(v) for v in dead_load)
-        c, s = math.cos(plane.psi), math.sin(plane.psi)
-        dead = np.array([c * qx + s * qz, qy, -s * qx + c * qz])
+        q_xi, q_n = plane.vector_to_plane(qx, qz)
+        dead = np.array([q_xi, qy, q_n])
         across = across or dead[2] != 0.0
     shared = {f.name: getattr(m, f.name) for f in dataclasses.fields(BeamModel)}
     shared.update(scale=rod_scale(m.scale), speed=None, speed_gradient=None)
@@ -86,7 +83,7 @@ def build_rod_problem(scene: Scene, split: bool = True, dead_load=None) -> _Prob
     def guess(tau: np.ndarray) -> np.ndarray:
         return lift(planar_guess(tau), rod.n_block)
 
-    return dataclasses.replace(prob, model=rod, guess=guess, block=NROD, plane=plane,
+    return dataclasses.replace(prob, model=rod, guess=guess, plane=plane,
                                bc=rod_boundary_conditions(prob.form, flat, rod, m.lengths))
 
 
@@ -185,7 +182,7 @@ def rigid_grounded_across(scene: Scene) -> str:
     if isinstance(e, FixedEnds) and e.anchor_point[1] != 0.0:
         return ""                     # hangs free from the anchor: nothing grounded
     ux, uz = (float(v) for v in scene.current.velocity(0.0))
-    if math.hypot(ux, uz) == 0.0 or scene.is_planar:
+    if math.hypot(ux, uz) == 0.0 or scene.statics_planar:
         return ""
     return ("environment.current: the current at the seabed (y = 0: "
             f"{math.hypot(ux, uz):.3g} m/s) acts on the grounded line, which the rigid, "

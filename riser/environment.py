@@ -125,11 +125,6 @@ class Current(Part):
         ux, uz = self.components
         return _slope(self.heights, ux, y), _slope(self.heights, uz, y)
 
-    def speed_gradient(self, y: Any) -> np.ndarray:
-        """d(speed)/dy [1/s] along the single heading, piecewise constant, zero outside
-        the given heights."""
-        return _slope(self.heights, self.speeds, y)
-
     @property
     def max_abs_speed(self) -> float:
         return max(abs(v) for v in self.speeds)

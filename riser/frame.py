@@ -51,12 +51,23 @@ class LinePlane:
         """The lateral unit vector e_n = (-sin psi, 0, cos psi)."""
         return np.array([-math.sin(self.psi), 0.0, math.cos(self.psi)])
 
+    def vector_to_plane(self, vx, vz):
+        """The horizontal components (along e_xi, along e_n) of vectors with components
+        (vx, vz) along x and z (a velocity, a load, a tangent)."""
+        c, s = math.cos(self.psi), math.sin(self.psi)
+        return c * vx + s * vz, -s * vx + c * vz
+
+    def vector_from_plane(self, vxi, vzeta):
+        """The x and z components of vectors with components (vxi, vzeta) along e_xi and
+        e_n (the inverse of :meth:`vector_to_plane`)."""
+        c, s = math.cos(self.psi), math.sin(self.psi)
+        return c * vxi - s * vzeta, s * vxi + c * vzeta
+
     def to_plane(self, x, z):
         """(xi, zeta) [m]: the distance along the plane from the anchor and the signed
         lateral offset (towards +e_n) of points (x, z)."""
-        c, s = math.cos(self.psi), math.sin(self.psi)
-        dx, dz = np.asarray(x, float) - self.x0, np.asarray(z, float) - self.z0
-        return c * dx + s * dz, -s * dx + c * dz
+        return self.vector_to_plane(np.asarray(x, float) - self.x0,
+                                    np.asarray(z, float) - self.z0)
 
     def from_plane(self, xi, zeta):
         """(x, z) [m] of points at (xi, zeta) in the plane's frame (inverse of
@@ -109,5 +120,5 @@ def elevation(plane: LinePlane, tangents) -> np.ndarray:
     axes, beyond the vertical (above pi/2) when the tangent points back along the plane
     (towards the anchor): the planar convention, measured in the line's plane."""
     t = np.asarray(tangents, float)
-    along = t[:, 0] * math.cos(plane.psi) + t[:, 2] * math.sin(plane.psi)
+    along = plane.vector_to_plane(t[:, 0], t[:, 2])[0]
     return np.arctan2(t[:, 1], np.copysign(np.hypot(t[:, 0], t[:, 2]), along))

@@ -205,9 +205,7 @@ def catenary_shape(scene: Scene, s_nodes: np.ndarray, grid_step: float = 1.0,
         X[:, 2] = a3[2]
     else:                          # (xi, y) -> (x, y, z); tangents rotated alike
         X[:, 0], X[:, 2] = plane.from_plane(X[:, 0], 0.0)
-        c, sn = math.cos(plane.psi), math.sin(plane.psi)
-        D[:, 2] = sn * D[:, 0]
-        D[:, 0] = c * D[:, 0]
+        D[:, 0], D[:, 2] = plane.vector_from_plane(D[:, 0], 0.0)
     X[0] = a3
     X[-1] = h3
     D /= np.linalg.norm(D, axis=1)[:, None]

@@ -110,16 +110,15 @@ def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
            else np.interp(vf.s, bvp_prof.s, bvp_prof.tension))
     dT = vf.tension[sel] - ref[sel]
     three_d = bvp_prof.is_3d and vf.is_3d
+    # the signed in-plane moment (a 3D profile's moment_in_plane)
+    dM = signed_moment(vf)[sel] - np.interp(grid, bvp_prof.s, signed_moment(bvp_prof))
     if three_d:
         # the moment vector's two components across the tangent, compared component by
         # component (its magnitude has a kink where it changes sign): the row is the
         # magnitude of the difference vector
-        dMi = vf.moment_in_plane[sel] - np.interp(grid, bvp_prof.s, bvp_prof.moment_in_plane)
         dMo = (vf.moment_out_of_plane[sel]
                - np.interp(grid, bvp_prof.s, bvp_prof.moment_out_of_plane))
-        dM = np.hypot(dMi, dMo)
-    else:
-        dM = signed_moment(vf)[sel] - np.interp(grid, bvp_prof.s, signed_moment(bvp_prof))
+        dM = np.hypot(dM, dMo)
     for name, d in (("tension", dT), ("moment", dM)):
         i = int(np.argmax(np.abs(d)))
         add(name, None, None, diff=float(d[i]), at_s=float(grid[i]))

@@ -7,19 +7,18 @@ and its own static solver (:mod:`verification.peers.moordyn.run`). Its profile i
 the BVP's by the protocol's own rows (:func:`verification.comparison.agreement.agreement`: at MoorDyn's
 nodes, the BVP interpolated there, its tension through the same nodal average, since a
 MoorDyn interior node also reports the mean of its two segments), outside the verdict and
-against tolerances of its own, :data:`TOLERANCES`, each with its reason. On a 3D scene it
-is compared with the BVP when the BVP gives a 3D profile, else with the VFIFE
-(:func:`reference`), the protocol's 3D rows and ``lateral`` (:func:`lateral_rows`) added.
+against tolerances of its own, :data:`TOLERANCES`, each with its reason. On a 3D scene
+(the BVP's 3D rod against MoorDyn's 3D deck) the protocol's 3D rows and ``lateral``
+(:func:`lateral_rows`) are added.
 """
 
 from __future__ import annotations
 
-import dataclasses
 from pathlib import Path
 
 import numpy as np
 
-from riser.profile import Profile, lateral_summary
+from riser.profile import Profile
 from verification.comparison.agreement import agreement
 from verification.comparison.columns import ColumnResult, verdict_values
 from verification.comparison.tolerances import base_name
@@ -28,7 +27,6 @@ from verification.quantities import signed_moment
 from verification.report.markdown import md_table
 
 from . import FILES
-from .deck import statics_planar
 from .run import IC_TIME, PeerRun, run
 
 #: quantity -> (kind, value, reason). Kinds as verification/comparison/tolerances.py, plus ``of_h``:
@@ -79,69 +77,29 @@ PEER_COLUMNS = ("quantity", "unit", "bvp", "vfife", "moordyn", "diff", "rel_diff
                 "tolerance", "pass", "reason", "reference")
 
 
-def reference(comp) -> tuple[str, Profile, Profile]:
-    """What MoorDyn is compared with: (``bvp`` or ``vfife``, its profile in the scene's arc
-    length, the same in the solved scene's, from which MoorDyn's joints start). The BVP,
-    as the verdict; on a 3D scene (the hang-off out of the anchor's plane, a current out
-    of the x-y plane) the VFIFE unless the BVP gave a 3D profile: a planar BVP is not the
-    3D line's solution."""
-    b, v = comp.bvp, comp.vfife
-    solved = comp.matched_scene or comp.scene
-    bp = b.profile if b is not None and getattr(b, "converged", False) else None
-    if bp is not None and (statics_planar(solved) or bp.is_3d):
-        return "bvp", shifted(bp, comp.s_shift), bp
-    return "vfife", shifted(v.profile, comp.s_shift), v.profile
-
-
-def _why_3d(comp) -> str:
-    why = (comp.matched_scene or comp.scene).out_of_plane()
-    return why[1] if why else "the BVP gave no profile"
-
-
-def _lateral_summary(p: Profile) -> dict:
-    """:func:`riser.profile.lateral_summary`, without the moment's figures when the
-    profile has no out-of-plane moment."""
-    if p.moment_out_of_plane is not None:
-        return lateral_summary(p)
-    out = lateral_summary(dataclasses.replace(p, moment_out_of_plane=np.zeros_like(p.s)))
-    return {k: v for k, v in out.items() if "moment" not in k}
+def reference(comp) -> tuple[Profile, Profile]:
+    """The BVP's profile MoorDyn is compared with, as the verdict (in 3D too: the BVP
+    solves a 3D scene as its 3D rod): (in the scene's arc length, in the solved scene's,
+    from which MoorDyn's joints start)."""
+    bp = comp.bvp.profile
+    return shifted(bp, comp.s_shift), bp
 
 
 def lateral_rows(ref: Profile, md: Profile, depth: float) -> list[dict]:
-    """MoorDyn's 3D rows, when both profiles carry the lateral offset (in the form of the
-    protocol's rows: the reference's value under ``bvp``, MoorDyn's under ``vfife``): the
-    largest difference of the lateral offset and of the out-of-plane moment at MoorDyn's
-    nodes (the reference interpolated there), the largest lateral excursion and the largest
-    out-of-plane moment."""
+    """MoorDyn's row ``lateral``, when both profiles carry the lateral offset (in the form
+    of the protocol's rows: the BVP's value under ``bvp``, MoorDyn's under ``vfife``): the
+    largest difference of the lateral offset at MoorDyn's nodes (the BVP interpolated
+    there). The protocol's own 3D rows (the out-of-plane moment, the lateral excursion,
+    ...) come with :func:`~verification.comparison.agreement.agreement`."""
     if ref.lateral is None or md.lateral is None:
         return []
     lo, hi = max(ref.s[0], md.s[0]), min(ref.s[-1], md.s[-1])
     sel = (md.s >= lo - 1e-9) & (md.s <= hi + 1e-9)
-    m_max = max(float(np.max(np.abs(ref.moment))), 1e-12)
-    sr, sm = _lateral_summary(ref), _lateral_summary(md)
-    rows = []
-
-    def add(name, unit, basis, label, b=None, v=None, diff=None, at_s=None):
-        d = float(v - b) if diff is None else float(diff)
-        rows.append({"quantity": name, "unit": unit, "bvp": b, "vfife": v, "diff": d,
-                     "rel_diff": d / basis, "basis": basis, "basis_label": label,
-                     "at_s": at_s})
-
-    for name, col, basis, label, unit in (
-            ("lateral", "lateral", depth, "depth", "m"),
-            ("moment_out_of_plane", "moment_out_of_plane", m_max, "M_max", "N m")):
-        a, b = getattr(md, col), getattr(ref, col)
-        if a is None or b is None:
-            continue
-        d = a[sel] - np.interp(md.s[sel], ref.s, b)
-        i = int(np.argmax(np.abs(d)))
-        add(name, unit, basis, label, diff=d[i], at_s=float(md.s[sel][i]))
-    add("max_lateral_offset", "m", depth, "depth", sr["max_lateral_offset"],
-        sm["max_lateral_offset"])
-    if "max_moment_out_of_plane" in sr and "max_moment_out_of_plane" in sm:
-        add("max_moment_out_of_plane", "N m", m_max, "M_max", sr["max_moment_out_of_plane"],
-            sm["max_moment_out_of_plane"])
-    return rows
+    d = md.lateral[sel] - np.interp(md.s[sel], ref.s, ref.lateral)
+    i = int(np.argmax(np.abs(d)))
+    return [{"quantity": "lateral", "unit": "m", "bvp": None, "vfife": None,
+             "diff": float(d[i]), "rel_diff": float(d[i]) / depth, "basis": depth,
+             "basis_label": "depth", "at_s": float(md.s[sel][i])}]
 
 
 def tolerance(row: dict, h: float) -> tuple[float | None, str, str]:
@@ -180,16 +138,15 @@ class MoorDynColumn:
 
     def solve(self, comp, folder: Path, progress=None) -> ColumnResult:
         """Run MoorDyn on ``comp.scene`` (its deck and log into ``folder``); its rows against
-        the reference (:func:`reference`: the BVP, or on a 3D scene the VFIFE) with this
-        column's own tolerances, and the end-segment tension beside."""
-        ref, rp, start = reference(comp)
+        the BVP (:func:`reference`) with this column's own tolerances, and the end-segment
+        tension beside."""
+        rp, start = reference(comp)
         peer = run(comp.scene, folder, segment_length=self.segment_length,
                    profile=start, ic_time=self.ic_time, progress=progress)
         if peer.profile is None:
             return ColumnResult(self, peer, note=peer.message, ok=peer.converged)
         vf = {r["quantity"]: r for r in comp.rows}
         own = agreement(rp, peer.profile, comp.depth, nodal=True)
-        other = "vfife" if ref == "bvp" else "bvp"
         rows = []
         have = {r["quantity"] for r in own}
         extra = [r for r in lateral_rows(rp, peer.profile, comp.depth)
@@ -197,24 +154,22 @@ class MoorDynColumn:
         for r in own + extra:
             tol, label, why = tolerance(r, self.segment_length)
             d = r.get("diff")
-            rows.append({"quantity": r["quantity"], "unit": r.get("unit", ""), ref: r["bvp"],
-                         other: vf.get(r["quantity"], {}).get(other),
+            rows.append({"quantity": r["quantity"], "unit": r.get("unit", ""), "bvp": r["bvp"],
+                         "vfife": vf.get(r["quantity"], {}).get("vfife"),
                          "moordyn": r["vfife"], "diff": d, "rel_diff": r.get("rel_diff"),
                          "at_s": r.get("at_s"), "basis_label": r.get("basis_label", ""),
                          "tolerance": tol, "tol_label": label,
                          "pass": None if tol is None or d is None else bool(abs(d) <= tol),
-                         "reason": why, "reference": ref})
+                         "reason": why, "reference": "bvp"})
         b, seg = float(rp.tension[-1]), peer.info["hang_off_end_segment_tension"]
         rows.append({
-            "quantity": "hang_off_segment_tension", "unit": "N", ref: b, other: None,
+            "quantity": "hang_off_segment_tension", "unit": "N", "bvp": b, "vfife": None,
             "moordyn": seg, "diff": seg - b, "rel_diff": (seg - b) / b, "at_s": None,
             "basis_label": "itself", "tolerance": None, "tol_label": "", "pass": None,
             "reason": "the last segment's tension (GetLineFairTen), half a segment below the "
-            "end: shown, not assessed", "reference": ref})
-        note = peer.message if ref == "bvp" else (
-            f"{peer.message}; compared with the VFIFE (the scene is 3D: {_why_3d(comp)})")
+            "end: shown, not assessed", "reference": "bvp"})
         return ColumnResult(self, peer, peer.profile, verdict_values(comp.rows, own), rows,
-                            note=note, ok=peer.converged)
+                            note=peer.message, ok=peer.converged)
 
     def markdown(self, comp, res: ColumnResult, heading: str = "#") -> list[str]:
         return moordyn_markdown(comp, res, heading)
@@ -230,11 +185,11 @@ class MoorDynColumn:
 
 
 def hinge_moments(comp, peer: PeerRun) -> list[tuple[float, float]]:
-    """(s, the reference's moment) at each joint between MoorDyn lines (the BVP's, or the
-    VFIFE's on a 3D scene: :func:`reference`): where MoorDyn's hinge has 0."""
+    """(s, the BVP's moment) at each joint between MoorDyn lines: where MoorDyn's hinge
+    has 0."""
     if peer.files is None:
         return []
-    _, bp, _ = reference(comp)
+    bp, _ = reference(comp)
     m = signed_moment(bp)
     return [(s0 - peer.files.s_shift, float(np.interp(s0 - peer.files.s_shift, bp.s, m)))
             for s0, _ in peer.files.export.line_span[1:]]
@@ -251,12 +206,10 @@ def moordyn_markdown(comp, res: ColumnResult, heading: str = "#") -> list[str]:
              f"{peer.message}."]
     if peer.profile is None:
         return lines
-    ref, _, _ = reference(comp)
-    REF = ref.upper()
     if peer.profile.is_3d:
-        lines += ["", f"The scene is 3D ({_why_3d(comp)}): MoorDyn solved the 3D deck and "
-                  f"is compared with the {REF}'s 3D solution"
-                  + ("" if ref == "bvp" else " (the BVP gave no 3D profile)") + "; the rows "
+        why = (comp.matched_scene or comp.scene).out_of_plane(statics=True)
+        lines += ["", f"The scene is 3D ({why[1]}): MoorDyn solved the 3D deck and "
+                  "is compared with the BVP's 3D solution; the rows "
                   "of the lateral offset (from the vertical plane through the ends) and of "
                   "the out-of-plane moment are added. MoorDyn's moment vector at a node is "
                   "EI x GetLineNodeCurv about the axis q_{i-1} x q_i of its two segments "
@@ -286,7 +239,7 @@ def moordyn_markdown(comp, res: ColumnResult, heading: str = "#") -> list[str]:
     ]
     hinges = hinge_moments(comp, peer)
     if hinges:
-        lines.append(f"- {REF} moment at the hinges (MoorDyn: 0): " + ", ".join(
+        lines.append("- BVP moment at the hinges (MoorDyn: 0): " + ", ".join(
             f"{m / 1e3:.3g} kN m at s = {s:.1f} m" for s, m in hinges) + ".")
     lines += ["", "Tolerances of this column, each with its reason: "
               "`verification/peers/moordyn/column.py`.", ""]
@@ -299,10 +252,10 @@ def moordyn_markdown(comp, res: ColumnResult, heading: str = "#") -> list[str]:
                      "" if rel is None else f"{100 * rel:+.3g} %",
                      r["tol_label"], {True: "yes", False: "**no**", None: "-"}[r["pass"]],
                      r["reason"]))
-    lines.append(md_table(["quantity", "unit", "BVP", "VFIFE", "MoorDyn", f"MoorDyn - {REF}",
+    lines.append(md_table(["quantity", "unit", "BVP", "VFIFE", "MoorDyn", "MoorDyn - BVP",
                            "relative", "tolerance", "within", "reason"], rows))
     lines += ["", "Files: `moordyn/agreement.csv` (these rows), `moordyn/profile.csv` (MoorDyn's "
-              f"profile and the {REF} interpolated at MoorDyn's nodes), `moordyn/deck.dat`, "
+              "profile and the BVP interpolated at MoorDyn's nodes), `moordyn/deck.dat`, "
               "`moordyn/moordyn.log`.", ""]
     return lines
 
@@ -318,7 +271,7 @@ def write(comp, res: ColumnResult, out: Path) -> None:
     pd.DataFrame(res.rows, columns=PEER_COLUMNS).to_csv(
         d / "agreement.csv", index=False, float_format="%.8g")
     p = peer.profile
-    ref, bp, _ = reference(comp)
+    bp, _ = reference(comp)
     cols = {"s": p.s, "x": p.x, "y": p.y, "z": p.z, "tension": p.tension,
             "curvature": p.curvature, "moment": p.moment, "angle_deg": np.degrees(p.theta)}
     three_d = ("lateral", "moment_in_plane", "moment_out_of_plane")
@@ -327,7 +280,7 @@ def write(comp, res: ColumnResult, out: Path) -> None:
             cols[c] = getattr(p, c)
     for c in ("tension", "moment") + three_d:
         if getattr(p, c) is not None and getattr(bp, c) is not None:
-            cols[f"{ref}_{c}"] = np.interp(p.s, bp.s, getattr(bp, c))
+            cols[f"bvp_{c}"] = np.interp(p.s, bp.s, getattr(bp, c))
     pd.DataFrame(cols).to_csv(d / "profile.csv", index=False, float_format="%.10g")
 
 
@@ -337,7 +290,7 @@ def summary_lines(res: ColumnResult) -> list[str]:
     for r in res.rows:
         if r["pass"] is not None and r["diff"] is not None:
             out.append(f"    {'ok  ' if r['pass'] else 'OUT '} {r['quantity']:<22} MoorDyn - "
-                       f"{r.get('reference', 'bvp').upper()} {r['diff']:.6g} {r['unit']} "
+                       f"BVP {r['diff']:.6g} {r['unit']} "
                        f"(tolerance {r['tol_label']})")
     return out
 

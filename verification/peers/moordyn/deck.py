@@ -51,25 +51,16 @@ def fixed_scene(scene: Scene) -> tuple[Scene, float, str]:
     return eq.scene, eq.s_shift, eq.note
 
 
-def statics_planar(scene: Scene) -> bool:
-    """True when the static state lies in the x-y plane: the ends in one plane z = const
-    and the current in the x-y plane at every height (a top motion along z, which makes
-    ``Scene.is_planar`` False, moves nothing in statics)."""
-    e, cur = scene.ends, scene.current
-    return ((not isinstance(e, FixedEnds) or e.in_plane)
-            and (cur is None or cur.is_planar))
-
-
 def joint_guess(scene: Scene, spans, profile=None) -> tuple[list | None, str]:
     """Scene (x, y, z) of the joints between MoorDyn lines, from ``profile`` (a solved
     profile of the fixed-ends scene) or a solve of it (the BVP's; the VFIFE's for a 3D
-    scene, which the BVP does not solve); (None, reason) when neither is available (the
-    export then puts them on the chord)."""
+    scene); (None, reason) when neither is available (the export then puts them on the
+    chord)."""
     if len(spans) < 2:
         return None, "no joints"
     how = "the given profile"
     if profile is None:
-        method = "bvp" if statics_planar(scene) else "vfife"
+        method = "bvp" if scene.statics_planar else "vfife"
         try:
             res = pipeline.solve_scene(scene, method)
         except Exception as exc:    # noqa: BLE001 - only MoorDyn's first guess depends on it

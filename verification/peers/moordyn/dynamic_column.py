@@ -33,9 +33,8 @@ FILES = ("moordyn/dynamic_agreement.csv",)
 def dynamic(dc, out, progress=None) -> tuple[str, list[str]]:
     """Run MoorDyn on the smallest amplitude of ``dc`` into ``out``/moordyn; write its
     CSV and return its report section (Markdown) and its console lines."""
-    from .deck import statics_planar
     from .harmonic import first_harmonics, run_harmonic
-    if not statics_planar(dc.matched):      # the first harmonics it is read against are planar
+    if not dc.matched.statics_planar:      # the first harmonics it is read against are planar
         why = ("not run: its first harmonic is read against the frequency domain's about a "
                "planar static state, and this scene's is 3D")
         return (f"\n## MoorDyn (third opinion, not in the verdict)\n\nMoorDyn {why}.\n",

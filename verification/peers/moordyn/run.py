@@ -56,7 +56,7 @@ from riser.result import Status
 from riser.scene import Scene
 from vfife.dynamic_outputs import touchdown_s
 
-from .deck import DeckFiles, export, statics_planar
+from .deck import DeckFiles, export
 
 #: the force residual (net force on an interior node / its load, :func:`_residual`) accepted as
 #: static equilibrium: 1 % of a node's weight moves the tension by far less than the
@@ -316,7 +316,7 @@ def _profile(moordyn, lines, scene: Scene, files: DeckFiles, info: dict) -> Prof
     curvature = np.array(K)
     moment = np.array(EI) * curvature
     tdp = touchdown_s(s, y, scene.seabed is not None)
-    if statics_planar(scene):
+    if scene.statics_planar:
         shear = np.abs(np.gradient(moment * np.where(turn < 0, -1.0, 1.0), s))
         return Profile(s=s, x=x, y=y, z=z, theta=theta, tension=tension, moment=moment,
                        shear=shear, curvature=curvature, tdp_s=tdp)
