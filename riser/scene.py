@@ -33,10 +33,13 @@ from .ends import (
 from .environment import Current, Seabed
 from .errors import SceneError
 from .internal_flow import InternalFlow, check_internal_flow
+from .sea_state import check_sea_state, sea_state_out_of_plane
 from .line import LineType, Segment
 from .scene_paths import replaced
 from .settings import AnalyticSettings, BVPSettings, VFIFESettings
 from .spec import Spec, check, check_fields, spec
+from .vessel import Vessel
+from .waves import Waves
 
 __all__ = [
     "END_FORMS",
@@ -105,6 +108,8 @@ class Scene:
                                      default_doc="none (no surface)",
                                      doc="height of the surface above the seabed")
     current: Current | None = spec(None, "part", part=Current, table=ENV)
+    waves: Waves | None = spec(None, "part", part=Waves, table=ENV)
+    vessel: Vessel | None = spec(None, "part", part=Vessel)
     seabed: Seabed | None = spec(None, "part", part=Seabed)
     dynamics: Dynamics | None = spec(None, "part", part=Dynamics)
     internal_flow: InternalFlow | None = spec(None, "part", part=InternalFlow)
@@ -136,6 +141,7 @@ class Scene:
         self._check_geometry()
         self._check_current()
         self._check_top_motion()
+        check_sea_state(self)
 
     def error(self, key: str, message: str) -> SceneError:
         """A SceneError of this scene's source naming ``key``."""
@@ -358,7 +364,7 @@ class Scene:
         tm = None if self.dynamics is None else self.dynamics.top_motion
         if tm is not None and tm.axis == "z" and not statics:
             return ("dynamics.top_motion.axis", "the hang-off moves along z, out of plane")
-        return None
+        return None if statics else sea_state_out_of_plane(self)
 
     def replace(self, **changes: Any) -> Scene:
         """A checked copy with some fields changed (Scene is immutable).

@@ -12,6 +12,11 @@ thread, compilation excluded:
 - ``spatial_drag``: 3D kernel with an out-of-plane current (heading 90 deg, 1 m/s);
 - ``planar_drag_surface``: as ``planar_drag`` with the sea surface on (10 m above the
   hang-off, so every node is checked and stays wet: the cost of the check itself);
+- ``planar_drag_surface_waves``: as ``planar_drag_surface`` with a regular wave (4 m, 10
+  s): the per-step cost of the waves (the kinematics' Taylor step and the inertia force);
+  the whole cost of waves, with the kinematics' evaluation, is the wall time of dynamic
+  runs with a regular wave and with a 100-component sea over still water
+  (``effect_costs``);
 - ``planar_drag_flow`` and ``planar_drag_slug``: as ``planar_drag`` with contents (800
   kg/m3) flowing at 2.5 m/s, steady or as a slug (eta 0.25, 80 m): the flow pass of a
   dynamic run (vfife/flow.py) against the same scene without [internal_flow].
@@ -34,6 +39,7 @@ import numpy as np
 
 from riser.internal_flow import InternalFlow
 from riser.scene import Current, Dynamics, Scene, TopMotion
+from riser.waves import WaveSpectrum, WaveTrain, Waves
 
 from .model import Model
 from .solver import solve, warm_up
@@ -58,9 +64,12 @@ def _cold_compile_s() -> float:
 def _kernel_ns(scene, static: Model, planar: bool, nsteps: int = 4000,
                surface: bool = False) -> float:
     m = Model(scene, static.mesh, rot_scale=1.0, added_mass=True, planar=planar,
-              surface=surface, flow="dynamic" if scene.internal_flow is not None else None)
+              surface=surface, flow="dynamic" if scene.internal_flow is not None else None,
+              waves=scene.waves is not None)
     m.X[:] = static.X
     m.D[:] = static.D
+    if m.use_waves:
+        m.waves.evaluate(m.X, 100.0)
     steps = critical_steps(static.mesh, rot_scale=1.0, tension=1e6, added_mass=True)
     dt, _ = choose_step(steps, 0.8)
     m.run(10, dt, 0.0)
@@ -70,6 +79,27 @@ def _kernel_ns(scene, static: Model, planar: bool, nsteps: int = 4000,
         m.run(nsteps, dt, 0.0)
         best = min(best, time.perf_counter() - t0)
     return best / (nsteps * static.mesh.ne) * 1e9
+
+
+#: the bench's regular wave (per-step kernel cost and a dynamic run) and its sea
+REGULAR = Waves(trains=(WaveTrain(height=4.0, period=10.0),), ramp_time=10.0)
+SEA = Waves(spectrum=WaveSpectrum(kind="jonswap", hs=4.0, tp=10.0, components=100),
+            ramp_time=10.0)
+
+
+def _wave_costs(scene, surface: float, duration: float) -> dict:
+    """Wall time of a dynamic run (duration [s], still water, 1 m elements, the surface
+    10 m above the hang-off) with a regular wave and with a 100-component sea over the
+    same run without waves: the whole cost of the waves (the kernels' Taylor step and
+    inertia, and the kinematics' evaluation per interval, :mod:`vfife.waves`)."""
+    base = scene.replace(water_depth=surface, dynamics=Dynamics(duration=duration,
+                                                                output_interval=0.5))
+    walls = {}
+    for key, waves in (("still", None), ("regular", REGULAR), ("sea", SEA)):
+        r = solve(base.replace(waves=waves), element_length=1.0)
+        walls[key] = r.info.get("dynamic_wall_s", float("nan"))
+    return {"regular_wave_over_still_dynamics": walls["regular"] / walls["still"],
+            "sea_100_components_over_still_dynamics": walls["sea"] / walls["still"]}
 
 
 def run_bench(out_dir, scene: Scene, *, duration: float = 30.0) -> dict:
@@ -112,11 +142,16 @@ def run_bench(out_dir, scene: Scene, *, duration: float = 30.0) -> dict:
     ns["planar_drag_slug"] = _kernel_ns(full.replace(
         current=planar_cur.current, internal_flow=InternalFlow(
             speed=2.5, density_amplitude=0.25, slug_length=80.0)), static_model, True)
+    surface = float(static_model.X[1, -1]) + 10.0
+    ns["planar_drag_surface_waves"] = _kernel_ns(
+        planar_cur.replace(water_depth=surface, waves=REGULAR), static_model, True,
+        surface=True)
     dyn_scene = scene.replace(dynamics=Dynamics(duration=duration, output_interval=1.0,
                                                top_motion=TopMotion(axis="y", amplitude=1.5,
                                                                     period=10.0,
                                                                     ramp_time=10.0)))
     dyn = solve(dyn_scene, element_length=1.0)
+    waves = _wave_costs(scene, surface, duration)
     bench = {
         "machine": {"python": platform.python_version(), "processor": platform.processor()
                     or platform.machine(), "threads": 1},
@@ -128,7 +163,9 @@ def run_bench(out_dir, scene: Scene, *, duration: float = 30.0) -> dict:
                                        "planar_drag_flow": ns["planar_drag_flow"],
                                        "planar_drag_slug": ns["planar_drag_slug"],
                                        "spatial_drag_profile": ns["spatial_drag_profile"],
-                                       "spatial_drag_turning": ns["spatial_drag_turning"]},
+                                       "spatial_drag_turning": ns["spatial_drag_turning"],
+                                       "planar_drag_surface_waves":
+                                           ns["planar_drag_surface_waves"]},
         "compile_s": cold,
         "cache_load_s": cache_load,
         "static_wall_s": stat.wall_time_s,
@@ -151,6 +188,9 @@ def run_bench(out_dir, scene: Scene, *, duration: float = 30.0) -> dict:
             "slug_on_over_off_planar_drag": ns["planar_drag_slug"] / ns["planar_drag"],
             "turning_over_one_heading_spatial_drag": (ns["spatial_drag_turning"]
                                                       / ns["spatial_drag_profile"]),
+            "waves_on_over_off_planar_drag_surface": (ns["planar_drag_surface_waves"]
+                                                      / ns["planar_drag_surface"]),
+            **waves,
         },
         "targets": {"kernel_ns_planar": 6.0, "kernel_ns_spatial_drag": 15.0,
                     "static_wall_s": 2.0, "realtime_factor_1m": 10.0},
@@ -191,4 +231,10 @@ def format_table(bench: dict) -> str:
                  f"slug x{e['slug_on_over_off_planar_drag']:.2f}; a current turning with "
                  f"height / one heading (3D + drag) "
                  f"x{e.get('turning_over_one_heading_spatial_drag', float('nan')):.2f}")
+    if "waves_on_over_off_planar_drag_surface" in e:
+        lines.append(f"waves on/off: kernel (planar + drag + surface) "
+                     f"x{e['waves_on_over_off_planar_drag_surface']:.2f}; dynamic run with a "
+                     f"regular wave / still water x{e['regular_wave_over_still_dynamics']:.2f}, "
+                     f"with a 100-component sea x"
+                     f"{e['sea_100_components_over_still_dynamics']:.2f}")
     return "\n".join(lines)

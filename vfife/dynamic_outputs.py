@@ -35,7 +35,7 @@ ARC_LENGTH_COLUMNS = ("touchdown_s", "min_tension_s", "max_moment_s")
 ARC_LENGTH_KEYS = ("dynamic_min_touchdown_s", "dynamic_max_touchdown_s",
                    "dynamic_min_tension_s", "dynamic_max_moment_s", "dynamic_max_tension_s")
 ENVELOPE = ("s", "tension_min", "tension_max", "moment_max", "curvature_max", "y_min",
-            "y_max")
+            "y_max", "tension_mean", "tension_std", "curvature_mean", "curvature_std")
 
 
 def touchdown_s(s: np.ndarray, y: np.ndarray, has_seabed: bool) -> float | None:
@@ -67,13 +67,18 @@ class Recorder:
     has_seabed : the scene has a seabed (touchdown outputs).
     """
 
-    def __init__(self, s: np.ndarray, start: float, save_states: bool, has_seabed: bool):
+    def __init__(self, s: np.ndarray, start: float, save_states: bool, has_seabed: bool,
+                 elevation=None):
         self.s = np.asarray(s, float)
         self.start = float(start)
         self.save_states = save_states
         self.has_seabed = has_seabed
+        self.elevation = elevation
         n = len(self.s)
-        self.ts = {k: [] for k in TIMESERIES}
+        self.columns = TIMESERIES + (("wave_elevation",) if elevation is not None else ())
+        self.ts = {k: [] for k in self.columns}
+        # sums of the window for the mean and standard deviation along s
+        self.sums = {k: np.zeros(n) for k in ("T", "T2", "K", "K2")}
         self.env = {"tension_min": np.full(n, np.inf), "tension_max": np.full(n, -np.inf),
                     "moment_max": np.full(n, -np.inf), "curvature_max": np.full(n, -np.inf),
                     "y_min": np.full(n, np.inf), "y_max": np.full(n, -np.inf)}
@@ -81,6 +86,7 @@ class Recorder:
                        "moment_vector": []}
         self.stats: dict = {}
         self.samples = 0
+        self.top_tension: list[float] = []       # the window's hang-off tension samples
 
     def sample(self, t: float, model, ke: float, record: bool) -> None:
         """Take the state of ``model`` at time ``t`` [s] (kinetic energy ``ke`` [J]);
@@ -97,10 +103,12 @@ class Recorder:
                "touchdown_tension": td_t, "min_tension": T[i_min],
                "min_tension_s": self.s[i_min], "max_moment": M[i_mom],
                "max_moment_s": self.s[i_mom], "kinetic_energy": ke}
+        if self.elevation is not None:
+            row["wave_elevation"] = self.elevation(t)
         if t >= self.start - 1e-9:
             self._window(row, T, M, K, y)
         if record:
-            for k in TIMESERIES:
+            for k in self.columns:
                 self.ts[k].append(float(row[k]))
             if self.save_states:
                 self.states["t"].append(t)
@@ -118,8 +126,14 @@ class Recorder:
         np.maximum(e["curvature_max"], K, out=e["curvature_max"])
         np.minimum(e["y_min"], y, out=e["y_min"])
         np.maximum(e["y_max"], y, out=e["y_max"])
+        sums = self.sums
+        sums["T"] += T
+        sums["T2"] += T * T
+        sums["K"] += K
+        sums["K2"] += K * K
         st = self.stats
         self.samples += 1
+        self.top_tension.append(float(row["hang_off_tension"]))
         for key, value, pick in (("max_hang_off_tension", row["hang_off_tension"], max),
                                  ("min_hang_off_tension", row["hang_off_tension"], min),
                                  ("min_touchdown_s", row["touchdown_s"], min),
@@ -139,7 +153,16 @@ class Recorder:
         return {k: np.asarray(v, float) for k, v in self.ts.items()}
 
     def envelope(self) -> dict:
-        return {"s": self.s.copy(), **{k: v.copy() for k, v in self.env.items()}}
+        """The envelopes along s, and the window's mean and standard deviation of the
+        tension [N] and curvature [1/m] (``tension_mean``, ``tension_std``,
+        ``curvature_mean``, ``curvature_std``; population statistics of the samples)."""
+        out = {"s": self.s.copy(), **{k: v.copy() for k, v in self.env.items()}}
+        n = max(self.samples, 1)
+        for q, key in (("T", "tension"), ("K", "curvature")):
+            mean = self.sums[q] / n
+            out[f"{key}_mean"] = mean
+            out[f"{key}_std"] = np.sqrt(np.maximum(self.sums[q + "2"] / n - mean * mean, 0.0))
+        return out
 
     def states_arrays(self) -> dict | None:
         if not self.save_states:
@@ -157,6 +180,10 @@ class Recorder:
         if "max_hang_off_tension" in st:
             st["hang_off_tension_range"] = st["max_hang_off_tension"] - st[
                 "min_hang_off_tension"]
+        if self.top_tension:
+            x = np.asarray(self.top_tension)
+            st["hang_off_tension_mean"] = float(np.mean(x))
+            st["hang_off_tension_std"] = float(np.std(x))
         if len(self.env["tension_max"]) and np.isfinite(self.env["tension_max"][0]):
             j = int(np.argmax(self.env["tension_max"]))
             st["max_tension"], st["max_tension_s"] = float(self.env["tension_max"][j]), float(

@@ -35,6 +35,7 @@ from enum import StrEnum
 import numpy as np
 
 from riser.callbacks import with_fraction
+from riser.hang_off_motion import axis_displacement, hang_off_displacement
 
 from .dynamic_outputs import Recorder
 from .flow import lightest_mass_factor
@@ -55,27 +56,20 @@ class DynamicsOutcome(StrEnum):
 
 
 def top_displacement(scene, t: np.ndarray) -> np.ndarray:
-    """Hang-off displacement [m] at times t [s] (vectorised TopMotion.displacement)."""
-    tm = scene.dynamics.top_motion
-    if tm is None:
-        return np.zeros_like(t)
-    if tm.times is not None:
-        d = np.interp(t, tm.times, tm.displacements)
-    else:
-        d = tm.amplitude * np.sin(2.0 * math.pi * t / tm.period)
-    ramp = tm.ramp
-    if ramp > 0.0:
-        r = np.where(t < ramp, 0.5 * (1.0 - np.cos(math.pi * np.minimum(t, ramp) / ramp)), 1.0)
-        d = d * r
-    return d
+    """Hang-off displacement [m] along the top motion's axis at times t [s]
+    (:func:`riser.hang_off_motion.axis_displacement`)."""
+    return axis_displacement(scene, t)
 
 
-def _axis(scene) -> np.ndarray:
-    tm = scene.dynamics.top_motion
-    ax = np.zeros(3)
-    if tm is not None:
-        ax["xyz".index(tm.axis)] = 1.0
-    return ax
+def wave_speed_hint(scene) -> float:
+    """An upper bound of the waves' particle speed at the surface and of the vessel's
+    hang-off speed [m/s] (for the explicit drag's step): sum of a omega (x 2 with a
+    vessel), 0 without waves."""
+    if scene.waves is None:
+        return 0.0
+    comp = scene.waves.components(scene.water_depth, scene.gravity, (0.0, 0.0))
+    v = float(np.sum(comp.amplitude * comp.omega) / np.tanh(np.min(comp.k) * comp.depth))
+    return 2.0 * v if scene.vessel is not None else v
 
 
 def blow_up_cause(info: dict) -> str:
@@ -119,7 +113,8 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
     added = any(scene.line_types[s.line_type].added_mass > 0.0 for s in scene.segments)
     rot_scale = vf.rotational_inertia_scale_dynamics
     model = Model(scene, mesh, rot_scale=rot_scale, added_mass=added, planar=planar,
-                  drag=True, surface=True, flow="dynamic", dead_load=static.dead_load)
+                  drag=True, surface=True, flow="dynamic", dead_load=static.dead_load,
+                  waves=True)
     model.X[:] = static.X
     model.D[:] = static.D
     tm = dyn.top_motion
@@ -129,12 +124,17 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
     # shorter by sqrt(m / (m + m_a)) (0.75 for Yu's flexible riser)
     reach = 0.0 if tm is None else (tm.amplitude if tm.times is None
                                     else float(np.max(np.abs(tm.displacements))))
+    trough = 0.0
+    if scene.waves is not None:      # the surface comes down by the waves' amplitudes
+        comp = scene.waves.components(scene.water_depth, scene.gravity, (0.0, 0.0))
+        trough = float(np.sum(comp.amplitude))
+        reach += trough if scene.vessel is not None else 0.0
     emerge = model.use_surface and (float(np.max(static.X[1])) + reach
-                                    >= 0.99 * scene.water_depth)
+                                    >= 0.99 * scene.water_depth - trough)
     steps = critical_steps(mesh, rot_scale=rot_scale, tension=1.5 * tmax,
                            added_mass=added and not emerge,
                            seabed_stiffness=kseabed, seabed_damping=model.cseabed,
-                           drag_speed=2.0 * max_speed_hint(scene)
+                           drag_speed=2.0 * (max_speed_hint(scene) + wave_speed_hint(scene))
                            if model.use_drag else 0.0,
                            mass_factor=lightest_mass_factor(scene))
     dt, limit = choose_step(steps, vf.time_step_safety)
@@ -145,13 +145,25 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
     if tm is not None and tm.times is None:
         # envelope sampling at <= period/40, an exact divisor of the output interval
         env_dt = out_dt / math.ceil(out_dt / min(out_dt, tm.period / 40.0) - 1e-9)
+    if model.use_waves or scene.vessel is not None:
+        # the shortest wave period sampled 40 times, as a harmonic top motion's (and
+        # within the kinematics' interval, vfife.waves)
+        comp = scene.waves.components(scene.water_depth, scene.gravity, (0.0, 0.0))
+        shortest = min(2.0 * math.pi / float(np.max(comp.omega)) / 40.0, env_dt)
+        env_dt = out_dt / math.ceil(out_dt / min(out_dt, shortest) - 1e-9)
     nsub = max(1, int(math.ceil(env_dt / dt - 1e-9)))
     dt = env_dt / nsub                       # step divides the sampling interval exactly
     n_env = int(round(dyn.duration / env_dt))
     per_out = max(1, int(round(out_dt / env_dt)))
     top0 = static.X[:, -1].copy()
-    axis = _axis(scene)
-    rec = Recorder(mesh.s, dyn.statistics_from, dyn.save_states, scene.seabed is not None)
+    elevation = None
+    if model.use_waves:
+        origin = model.waves.components.origin
+        elevation = lambda t: model.waves.elevation(origin[0], origin[1], t)  # noqa: E731
+    start = dyn.statistics_from if scene.waves is None or dyn.statistics_start is not None \
+        else min(max(dyn.statistics_from, scene.waves.ramp), 0.5 * dyn.duration)
+    rec = Recorder(mesh.s, start, dyn.save_states, scene.seabed is not None,
+                   elevation=elevation)
     # what a blow-up message names as its likely cause
     cause = {"critical_steps": steps, "time_step": dt,
              "emerging": model.use_surface and not emerge}
@@ -162,9 +174,10 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
     e0 = None
     for j in range(n_env):
         tj = np.linspace(j * env_dt, (j + 1) * env_dt, nsub + 1)
-        disp = top_displacement(scene, tj)
-        k, res, mres, ke, st = model.run(nsub, dt, dyn.damping, top_disp=disp, top_axis=axis,
-                                         top0=top0)
+        disp = hang_off_displacement(scene, tj)
+        if model.use_waves:
+            model.waves.evaluate(model.X, j * env_dt)
+        k, res, mres, ke, st = model.run(nsub, dt, dyn.damping, top_disp=disp, top0=top0)
         t = (j + 1) * env_dt
         if st == 2 or not np.all(np.isfinite(model.X)):
             status = DynamicsOutcome.BLOW_UP
@@ -192,7 +205,8 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
         "steps": model.steps, "status": status, "message": message, "wall_s": wall,
         "simulated_s": model.steps * dt,
         "realtime_factor": model.steps * dt / wall if wall > 0 else float("inf"),
-        "effects": model.effects + (["top_motion"] if tm is not None else []),
+        "effects": model.effects + (["top_motion"] if tm is not None else [])
+        + (["vessel_motion"] if scene.vessel is not None else []),
         "ramp_time": tm.ramp if tm is not None else 0.0,
     }
     return model, info

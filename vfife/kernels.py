@@ -432,7 +432,7 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
               b0, b1, b2, wload, mass, im, imd, jinv, jrot, kst, cseabed, mu, vfric,
               U, Uz, cdn, cdt, cdir, use_drag, qd0, qd1, qd2, use_dashpot, wair, iair, madd,
               sband, dband, ysurf, use_surface, ql0, ql1, ql2, use_flow, pl0, pl1, pl2,
-              use_dead, dt, c, stats, R, RM):
+              use_dead, WV, cin, use_waves, dt, c, stats, R, RM):
     """Fused node pass (3D): nodal force = f[i] - f[i-1] - weight (+ seabed, + drag,
     + dead load), moment = a[i] + b[i-1]; central-difference update of the translations
     of nodes 1..n-2 (added mass normal to the director: im = 1/(m + ma), imd = 1/m - im)
@@ -460,6 +460,14 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
     ql0..ql2 (n,): internal-flow forces of :func:`flow_pass` (read only when use_flow).
     pl0..pl2 (n,): a dead load of fixed direction [N] per node, added to the weight
     (read only when use_dead; see :class:`vfife.model.Model`).
+    Waves (when use_waves): WV (7, n) the wave kinematics at the nodes now
+    (:func:`wave_taylor`): the fluid velocity [m/s] (rows 0-2, added to the current's in
+    the drag), the fluid acceleration [m/s2] (rows 3-5) and the surface height y [m]
+    (row 6, the sea surface of this node instead of ysurf); the fluid inertia force
+    wet x (cin[0, i] a_n + cin[1, i] a_t), a_n and a_t the acceleration's parts normal
+    and tangential to the director, cin (2, n) = ((1 + C_a), 1) rho pi D^2 / 4 x
+    tributary length [kg] (the Froude-Krylov force of the whole acceleration, plus the
+    added mass normal to the axis; see :mod:`vfife.waves`).
     Returns (max squared free-node force [N2], max squared moment [N2 m2], 2 x KE [J]);
     the two maxima are 0 unless ``stats``."""
     n = x.shape[0]
@@ -486,7 +494,8 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
         wet = 1.0
         if use_surface:                   # immersed fraction of the node's segment
             band = max(dband[i], sband[i] * abs(dy[i]))
-            wet = min(max((ysurf - y[i]) / band + 0.5, 0.0), 1.0)
+            ys = WV[6, i] if use_waves else ysurf
+            wet = min(max((ys - y[i]) / band + 0.5, 0.0), 1.0)
             wi = wair[i] + wet * (wi - wair[i])
             imi = 1.0 / (mass[i] + wet * madd[i])
             imdi = iair[i] - imi
@@ -512,6 +521,10 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
             rx = cu * cx - ux
             ry = cu * cy - uy
             rz = cu * cz + Uz[i] - uz
+            if use_waves:
+                rx += WV[0, i]
+                ry += WV[1, i]
+                rz += WV[2, i]
             rt = rx * ex + ry * ey + rz * ez
             rnx = rx - rt * ex
             rny = ry - rt * ey
@@ -521,6 +534,16 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
             gx += cn * rnx + ft * ex
             gy += cn * rny + ft * ey
             gz += cn * rnz + ft * ez
+        if use_waves:                     # Morison inertia on the normal acceleration
+            ax_ = WV[3, i]
+            ay_ = WV[4, i]
+            az_ = WV[5, i]
+            at = ax_ * ex + ay_ * ey + az_ * ez
+            ci = wet * cin[0, i]
+            ct = wet * cin[1, i] * at - ci * at
+            gx += ci * ax_ + ct * ex
+            gy += ci * ay_ + ct * ey
+            gz += ci * az_ + ct * ez
         if use_flow:
             gx += ql0[i]
             gy += ql1[i]
@@ -560,10 +583,10 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
 def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, jinv, jrot,
                  kst, cseabed, mu, vfric, U, cdn, cdt, cdir, use_drag, qd0, qd1,
                  use_dashpot, wair, iair, madd, sband, dband, ysurf, use_surface, ql0, ql1,
-                 use_flow, pl0, pl1, use_dead, dt, c, stats, R, RM):
+                 use_flow, pl0, pl1, use_dead, WV, cin, use_waves, dt, c, stats, R, RM):
     """Planar version of :func:`node_pass` (w (n,) rotation rate about z, a0, b0 (ne,)
     moments about z, cdir (2,) in plane, qd0, qd1 (ne,) dashpot forces, ql0, ql1 (n,)
-    flow forces, pl0, pl1 (n,) dead load [N])."""
+    flow forces, pl0, pl1 (n,) dead load [N]; WV rows 0, 1, 3, 4 and 6 of the waves)."""
     n = x.shape[0]
     c1 = 1.0 - 0.5 * c * dt
     c2 = 1.0 / (1.0 + 0.5 * c * dt)
@@ -595,7 +618,8 @@ def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, 
         wet = 1.0
         if use_surface:                       # see node_pass
             band = max(dband[i], sband[i] * abs(dy[i]))
-            wet = min(max((ysurf - y[i]) / band + 0.5, 0.0), 1.0)
+            ys = WV[6, i] if use_waves else ysurf
+            wet = min(max((ys - y[i]) / band + 0.5, 0.0), 1.0)
             wi = wair[i] + wet * (wi - wair[i])
             imi = 1.0 / (mass[i] + wet * madd[i])
             imdi = iair[i] - imi
@@ -614,6 +638,9 @@ def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, 
             cu = U[i]
             rx = cu * cx - ux
             ry = cu * cy - uy
+            if use_waves:
+                rx += WV[0, i]
+                ry += WV[1, i]
             rt = rx * ex + ry * ey
             rnx = rx - rt * ex
             rny = ry - rt * ey
@@ -621,6 +648,14 @@ def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, 
             ft = wet * cdt[i] * abs(rt) * rt
             gx += cn * rnx + ft * ex
             gy += cn * rny + ft * ey
+        if use_waves:                         # see node_pass
+            ax_ = WV[3, i]
+            ay_ = WV[4, i]
+            at = ax_ * ex + ay_ * ey
+            ci = wet * cin[0, i]
+            ct = wet * cin[1, i] * at - ci * at
+            gx += ci * ax_ + ct * ex
+            gy += ci * ay_ + ct * ey
         if use_flow:
             gx += ql0[i]
             gy += ql1[i]
@@ -656,13 +691,105 @@ def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, 
     return rmax, mmax, ke
 
 
+# ============================================================================ waves
+@njit(**_JIT)
+def wave_pass(x, y, z, t, amp, omega, k, phase, cosb, sinb, x0, z0, depth, wheeler, out):
+    """Airy wave kinematics at the nodes (x, y, z) [m] at time t [s], summed over the
+    components (amp [m], omega [rad/s], k [1/m], phase [rad], heading cosb, sinb; origin
+    x0, z0 [m]; mean surface at y = depth [m]; see :mod:`riser.waves` for the
+    convention eta = a cos(omega t - k (dx cos b + dz sin b) - eps)), without the ramp.
+
+    out (21, n): rows 0-6 the values of (u_x, u_y, u_z [m/s], a_x, a_y, a_z [m/s2], eta
+    [m]), rows 7-13 their first and rows 14-20 their second time derivatives at the fixed
+    point (the Taylor coefficients :func:`wave_taylor` steps with). Per component, with
+    theta the phase above: eta = a cos theta, horizontal velocity a omega C cos theta
+    along the heading, vertical -a omega S sin theta (= d eta / dt at the surface),
+    acceleration their time derivative;
+    C = cosh(k y')/sinh(k h), S = sinh(k y')/sinh(k h), written as exponentials that do
+    not overflow in deep water. y' is the stretched height: Wheeler (``wheeler``) y' = h
+    y / (h + eta) below the surface (eta the sum's elevation, computed first), else
+    min(y, h) (vertical stretching); above the surface y' = h (the node is dry there). A
+    component decayed to e^{k (y' - h)} < 1e-13 at a node is skipped there (its share is
+    below round-off of its value at the surface; deep nodes skip the short waves)."""
+    n = x.shape[0]
+    m = amp.shape[0]
+    for r in range(21):
+        for i in range(n):
+            out[r, i] = 0.0
+    for i in range(n):                  # the elevation first (Wheeler needs it)
+        e = 0.0
+        for j in range(m):
+            th = omega[j] * t - k[j] * ((x[i] - x0) * cosb[j] + (z[i] - z0) * sinb[j]) - phase[j]
+            e += amp[j] * math.cos(th)
+        out[6, i] = e
+    for i in range(n):
+        eta = out[6, i]
+        if wheeler:
+            top = depth + eta
+            yp = depth * min(y[i], top) / top if top > 0.0 else 0.0
+        else:
+            yp = min(y[i], depth)
+        yp = max(yp, 0.0)
+        for j in range(m):
+            w = omega[j]
+            kk = k[j]
+            ep = math.exp(kk * (yp - depth))
+            if ep < 1e-13:             # decayed below round-off of the surface's value
+                continue
+            em = math.exp(-kk * (yp + depth))
+            d = 1.0 - math.exp(-2.0 * kk * depth)
+            th = w * t - kk * ((x[i] - x0) * cosb[j] + (z[i] - z0) * sinb[j]) - phase[j]
+            ct = math.cos(th)
+            st = math.sin(th)
+            cc = (ep + em) / d
+            ss = (ep - em) / d
+            a = amp[j]
+            uh = a * w * cc            # horizontal velocity amplitude
+            uv = -a * w * ss           # vertical: u_y = d eta / dt at the surface
+            w2 = w * w
+            # values, then d/dt (cos -> -w sin, sin -> w cos), then d2/dt2 = -w^2 value
+            vals = (uh * ct, uv * st, -uh * w * st, uv * w * ct, a * ct)
+            rates = (-uh * w * st, uv * w * ct, -uh * w2 * ct, -uv * w2 * st, -a * w * st)
+            for q in range(5):
+                v0 = vals[q]
+                v1 = rates[q]
+                row = (0, 1, 3, 4, 6)[q]
+                if q == 4:
+                    out[7 + row, i] += v1
+                    out[14 + row, i] -= w2 * v0
+                    continue
+                if q == 0 or q == 2:      # horizontal: along the heading
+                    out[row, i] += v0 * cosb[j]
+                    out[row + 2, i] += v0 * sinb[j]
+                    out[7 + row, i] += v1 * cosb[j]
+                    out[7 + row + 2, i] += v1 * sinb[j]
+                    out[14 + row, i] -= w2 * v0 * cosb[j]
+                    out[14 + row + 2, i] -= w2 * v0 * sinb[j]
+                else:
+                    out[row, i] += v0
+                    out[7 + row, i] += v1
+                    out[14 + row, i] -= w2 * v0
+
+
+@njit(**_JIT)
+def wave_taylor(WT, tau, WV):
+    """The wave kinematics WV (7, n) at tau [s] after the Taylor point: value + tau rate +
+    tau^2 / 2 second derivative (WT (21, n), see :func:`wave_pass`; rows 0-5 of WV the
+    velocity and acceleration, row 6 the surface height: WT's row 6 holds depth + eta)."""
+    h2 = 0.5 * tau * tau
+    n = WV.shape[1]
+    for r in range(7):
+        for i in range(np.uint64(n)):       # unsigned: see _NOWRAP
+            WV[r, i] = WT[r, i] + tau * WT[7 + r, i] + h2 * WT[14 + r, i]
+
+
 # ============================================================================ driver
 @njit(**_JIT)
 def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd, jinv,
         jrot, wload, kst, cdn, cdt, heights, speeds, slopes, cdir, use_drag, Uz, speeds_z,
         slopes_z, turning, cseabed, mu, vfric, eta, Q, use_dashpot, wair, iair, madd,
-        sband, dband, ysurf, use_surface, use_flow, t0, fpar, fnodes, FL, P, use_dead, dt,
-        c, top0, top_axis, top_disp, tol_f, tol_m, vmax):
+        sband, dband, ysurf, use_surface, use_flow, t0, fpar, fnodes, FL, P, use_dead,
+        WT, WV, cin, use_waves, dt, c, top0, top_disp, tol_f, tol_m, vmax):
     """Advance up to ``nsteps`` explicit steps.
 
     jinv, jrot : (n,) inverse rotational inertia [1/(kg m2)] (0 at a clamped end) and the
@@ -689,9 +816,13 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
         added to the weight when use_dead (rows x, y on the planar path).
     planar : use the planar kernels on rows 0-1 of X, V, D (z untouched) and W[2] as the
         rotation rate; F (2, ne), MA, MB (1, ne), cdir (2,) then.
-    top0 (3,) hang-off position at zero displacement; top_axis (3,) unit axis; top_disp
-    (nsteps + 1,) hang-off displacement [m] at the end of each step (entry 0: at the
-    start). The anchor (node 0) keeps its position.
+    WT, WV, cin, use_waves : waves (see :func:`wave_taylor` and :func:`node_pass`): WT
+        (21, n) the kinematics' quadratic Taylor coefficients about the time t0 of this
+        call, WV (7, n) scratch for their values at each step, cin (2, n) the inertia
+        coefficients [kg]; run only when use_waves (dynamics).
+    top0 (3,) hang-off position at zero displacement; top_disp (3, nsteps + 1) hang-off
+    displacement [m] (x, y, z) at the end of each step (column 0: at the start). The
+    anchor (node 0) keeps its position.
     Stops early when the force residual < tol_f and the moment residual < tol_m (negative
     tolerances: never), or on a blow-up (NaN, or a speed above vmax [m/s]).
     The residuals are measured every step when a tolerance is given (statics), else on
@@ -718,6 +849,8 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
             current_pass(X[1], heights, speeds, slopes, U)
             if drag_z:
                 current_pass(X[1], heights, speeds_z, slopes_z, Uz)
+        if use_waves:
+            wave_taylor(WT, k * dt, WV)
         if use_flow:
             tk = t0 + k * dt
             if planar:
@@ -737,7 +870,8 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
                                       cseabed, mu, vfric, U, cdn, cdt, cdir, use_drag,
                                       Q[0], Q[1], use_dashpot, wair, iair, madd, sband,
                                       dband, ysurf, use_surface, FL[0], FL[1], use_flow,
-                                      P[0], P[1], use_dead, dt, c, stats, R[0], R[1])
+                                      P[0], P[1], use_dead, WV, cin, use_waves, dt, c,
+                                      stats, R[0], R[1])
         else:
             element_pass(X[0], X[1], X[2], D[0], D[1], D[2], l0, kax, kb, F[0], F[1], F[2],
                          MA[0], MA[1], MA[2], MB[0], MB[1], MB[2])
@@ -749,14 +883,13 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
                                    kst, cseabed, mu, vfric, U, Uz, cdn, cdt, cdir,
                                    use_drag, Q[0], Q[1], Q[2], use_dashpot, wair, iair,
                                    madd, sband, dband, ysurf, use_surface, FL[0], FL[1],
-                                   FL[2], use_flow, P[0], P[1], P[2], use_dead, dt, c,
-                                   stats, R[0], R[1])
+                                   FL[2], use_flow, P[0], P[1], P[2], use_dead, WV, cin,
+                                   use_waves, dt, c, stats, R[0], R[1])
         ke = 0.5 * k1
-        d1 = top_disp[k + 1]
-        vt = (d1 - top_disp[k]) / dt
         for j in range(3):
-            X[j, n - 1] = top0[j] + d1 * top_axis[j]
-            V[j, n - 1] = vt * top_axis[j]
+            d1 = top_disp[j, k + 1]
+            X[j, n - 1] = top0[j] + d1
+            V[j, n - 1] = (d1 - top_disp[j, k]) / dt
         if not ke < 1e300:
             if stats:
                 res = math.sqrt(r2)

@@ -21,6 +21,7 @@ from . import kernels
 from .flow import flow_arrays
 from .mesh import Mesh
 from .recovery import Recovery
+from .waves import WaveLoads
 
 #: largest contact damping ratio used by the explicit step (scene values above are clamped)
 MAX_CONTACT_ZETA = 1.0
@@ -53,11 +54,13 @@ class Model:
         zero) runs no dead-load work. It does not follow the line's shape (unlike drag),
         so a line under it has a closed form (tests). A z component needs ``planar``
         False.
+    waves : load the line with the scene's waves (dynamics; :mod:`vfife.waves`), when the
+        scene has waves with ``line_loads``; otherwise no wave kernel runs.
     """
 
     def __init__(self, scene: Scene, mesh: Mesh, *, rot_scale: float, added_mass: bool,
                  planar: bool, drag: bool | None = None, surface: bool = False,
-                 flow: str | None = None, dead_load=None):
+                 flow: str | None = None, dead_load=None, waves: bool = False):
         self.scene = scene
         self.mesh = mesh
         self.planar = planar
@@ -141,6 +144,12 @@ class Model:
         self._recovery: Recovery | None = None
         self.time = 0.0                 # [s] the flow's clock (dynamics)
         self._set_flow(flow)
+        wv = scene.waves
+        self.use_waves = bool(waves and wv is not None and wv.line_loads)
+        self.waves = WaveLoads(scene, mesh) if self.use_waves else None
+        self.WT = self.waves.WT if self.use_waves else np.zeros((21, 1))
+        self.WV = self.waves.WV if self.use_waves else np.zeros((7, 1))
+        self.cin = self.waves.cin if self.use_waves else np.zeros((2, 1))
 
     def _set_flow(self, mode: str | None) -> None:
         """Arrays of the internal-flow pass (see :mod:`vfife.flow`)."""
@@ -212,6 +221,8 @@ class Model:
             out.append("added_mass")
         if self.use_dead:
             out.append("dead_load")
+        if self.use_waves:
+            out.append("waves")
         return out
 
     def positions(self) -> np.ndarray:
@@ -230,16 +241,17 @@ class Model:
 
     # -------------------------------------------------------------- stepping
     def run(self, nsteps: int, dt: float, c: float, *, top_disp: np.ndarray | None = None,
-            top_axis=(0.0, 1.0, 0.0), top0: np.ndarray | None = None, tol_f: float = -1.0,
-            tol_m: float = -1.0, vmax: float = 1.0e3):
+            top0: np.ndarray | None = None, tol_f: float = -1.0, tol_m: float = -1.0,
+            vmax: float = 1.0e3):
         """Advance up to ``nsteps`` steps of ``dt`` [s] with damping ``c`` [1/s]; the
-        hang-off follows ``top0 + top_disp[k] * top_axis`` (default: stays put).
+        hang-off follows ``top0 + top_disp[:, k]`` (top_disp (3, nsteps + 1) [m]; default:
+        stays put). With waves, the kinematics' Taylor coefficients must have been set at
+        the start of the call (:meth:`vfife.waves.WaveLoads.evaluate`).
         Returns (steps, force residual [N], moment residual [N m], kinetic energy [J],
         status 0 done / 1 converged / 2 blow-up)."""
         if top_disp is None:
-            top_disp = np.zeros(nsteps + 1)
+            top_disp = np.zeros((3, nsteps + 1))
         top0 = self.X[:, -1].copy() if top0 is None else np.asarray(top0, float)
-        axis = np.asarray(top_axis, float)
         out = kernels.run(nsteps, self.planar, self.X, self.V, self.D, self.W, self.F,
                           self.MA, self.MB, self.U, self.R, self.l0, self.kax, self.kb,
                           self.mass, self.im, self.imd, self.jinv, self.jrot,
@@ -251,8 +263,8 @@ class Model:
                           self.eta, self.Q, self.use_dashpot, self.wair, self.iair,
                           self.madd, self.trib, self.dnode, self.ysurf, self.use_surface,
                           self.use_flow, self.time, self.fpar, self.fnodes,
-                          self.FL, self.P, self.use_dead, dt, c, top0, axis, top_disp,
-                          tol_f, tol_m, vmax)
+                          self.FL, self.P, self.use_dead, self.WT, self.WV, self.cin,
+                          self.use_waves, dt, c, top0, top_disp, tol_f, tol_m, vmax)
         self.steps += int(out[0])
         if self.use_flow:
             self.time += int(out[0]) * dt

@@ -35,6 +35,8 @@ from ..scene import (
 )
 from ..settings import AnalyticSettings, BVPSettings, VFIFESettings
 from ..spec import specs
+from ..vessel import RAOTable, Vessel
+from ..waves import WaveSpectrum, WaveTrain, Waves
 from .toml_table import Table
 
 # ---------------------------------------------------------------------- loading
@@ -155,6 +157,9 @@ def scene_from_dict(data: dict, source: str = "<scene>") -> Scene:
             raise cur_t.error("headings_deg", "give heading_deg (one direction) or "
                               "headings_deg (one per height), not both")
         values["current"] = _read_part(cur_t, Current)
+    waves_t = env.table("waves")
+    if waves_t is not None:
+        values["waves"] = _read_waves(waves_t)
     env.finish()
 
     sb_t = root.table("seabed")
@@ -168,6 +173,9 @@ def scene_from_dict(data: dict, source: str = "<scene>") -> Scene:
     values["segments"] = tuple(_read_part(t, Segment) for t in root.array_of_tables("segments"))
     values["ends"] = _read_ends(root.table("ends", required=True))
 
+    vessel_t = root.table("vessel")
+    if vessel_t is not None:
+        values["vessel"] = _read_vessel(vessel_t)
     dyn_t = root.table("dynamics")
     if dyn_t is not None:
         values["dynamics"] = _read_dynamics(dyn_t)
@@ -330,6 +338,26 @@ def _read_angle(t: Table, horizontal) -> float:
     if given[0] == ANGLE_KEYS[0]:
         return t.value(ANGLE_KEYS[0], horizontal)
     return 90.0 - t.value(ANGLE_KEYS[1], ENDS_FILE_KEYS[ANGLE_KEYS[1]], checked=True)
+
+
+def _read_waves(t: Table) -> Waves:
+    """[environment.waves]: its keys, [[...trains]] and [...spectrum]."""
+    values = t.fields(Waves)
+    values["trains"] = tuple(_read_part(tr, WaveTrain)
+                             for tr in t.array_of_tables("trains", required=False))
+    sp = t.table("spectrum")
+    if sp is not None:
+        values["spectrum"] = _read_part(sp, WaveSpectrum)
+    t.finish()
+    return t.build(Waves, **values)
+
+
+def _read_vessel(t: Table) -> Vessel:
+    """[vessel] and its [[vessel.raos]] tables."""
+    values = t.fields(Vessel)
+    values["raos"] = tuple(_read_part(r, RAOTable) for r in t.array_of_tables("raos"))
+    t.finish()
+    return t.build(Vessel, **values)
 
 
 def _read_dynamics(t: Table) -> Dynamics:
