@@ -27,6 +27,8 @@ from .line import LineType, Segment
 from .scene import ENV, MODEL_KEYS, Scene
 from .settings import EXPERT, AnalyticSettings, BVPSettings, VFIFESettings
 from .spec import Spec, specs
+from .vessel import RAOTable, Vessel
+from .waves import WaveSpectrum, WaveTrain, Waves
 
 BEGIN = "<!-- BEGIN generated: scene keys -->"
 END = "<!-- END generated: scene keys -->"
@@ -59,6 +61,9 @@ def _tables() -> list[tuple[str, list]]:
         ("top level", _rows(Scene)),
         (f"[{ENV}]", _rows(Scene, ENV)),
         (f"[{ENV}.current]", _rows(Current)),
+        (f"[{ENV}.waves]", _rows(Waves)),
+        (f"[[{ENV}.waves.trains]]", _rows(WaveTrain)),
+        (f"[{ENV}.waves.spectrum]", _rows(WaveSpectrum)),
         ("[seabed]", _rows(Seabed)),
         ("[line_types.NAME]", _rows(LineType, extra=LINE_TYPE_FILE_KEYS)),
         ("[[segments]]", _rows(Segment)),
@@ -69,6 +74,8 @@ def _tables() -> list[tuple[str, list]]:
         ("[model]", [(key, sp, None) for key, sp in MODEL_KEYS.items()]),
         ("[dynamics]", _rows(Dynamics)),
         ("[dynamics.top_motion]", _rows(TopMotion)),
+        ("[vessel]", _rows(Vessel)),
+        ("[[vessel.raos]]", _rows(RAOTable)),
         ("[internal_flow]", _rows(InternalFlow)),
         (f"[internal_flow.{SLUG}]", _rows(InternalFlow, SLUG)),
         ("[bvp]", _rows(BVPSettings)),

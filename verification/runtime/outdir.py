@@ -43,6 +43,8 @@ MODES = ("modes.csv", "agreement.csv", "report.md", "mode_shapes_in_plane.png",
          "mode_shapes_out_of_plane.png")
 #: each scene folder of ``reproduce cross_current``
 CROSS_CURRENT = ("agreement.csv", "headings.csv", "headings.png", "report.md")
+#: each unit folder of ``reproduce sea_states`` (lowe-langley; two-methods)
+SEA_STATES = ("tension.csv", "cases.csv", "tension.png", "report.md")
 #: ``stress`` and ``reproduce stress``
 STRESS = ("summary.csv", "report.md")
 #: ``bench``
@@ -65,6 +67,7 @@ STUDY_FILES = {
     "cost": COST,
     "modes": MODES,
     "cross_current": CROSS_CURRENT,
+    "sea_states": SEA_STATES,
     # the static comparison of each scene (without the paper model) beside its cases
     "dynamics": ("cases.csv", "convergence.csv", "report.md") + tuple(
         f for f in COMPARE if not f.startswith("bvp_paper_model/")),
@@ -164,6 +167,7 @@ def clear(folder: str | Path | None, names: tuple[str, ...]) -> list[Path]:
 
 def clear_unit(study: str, unit: str | None, study_folder: str | Path) -> list[Path]:
     """Clear what one unit of ``reproduce`` writes: ``study_folder/unit`` for the studies
-    with a folder per scene (compare, cost, modes, cross_current), else ``study_folder``."""
+    with a folder per unit (compare, cost, modes, cross_current, sea_states), else
+    ``study_folder``."""
     folder = Path(study_folder) / unit if unit is not None else Path(study_folder)
     return clear(folder, STUDY_FILES[study])
