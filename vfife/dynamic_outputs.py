@@ -68,12 +68,14 @@ class Recorder:
     """
 
     def __init__(self, s: np.ndarray, start: float, save_states: bool, has_seabed: bool,
-                 elevation=None):
+                 elevation=None, irregular: bool = False):
         self.s = np.asarray(s, float)
         self.start = float(start)
         self.save_states = save_states
         self.has_seabed = has_seabed
         self.elevation = elevation
+        self.irregular = irregular
+        self.times: list[float] = []              # the window's sample times
         n = len(self.s)
         self.columns = TIMESERIES + (("wave_elevation",) if elevation is not None else ())
         self.ts = {k: [] for k in self.columns}
@@ -134,6 +136,7 @@ class Recorder:
         st = self.stats
         self.samples += 1
         self.top_tension.append(float(row["hang_off_tension"]))
+        self.times.append(float(row["time"]))
         for key, value, pick in (("max_hang_off_tension", row["hang_off_tension"], max),
                                  ("min_hang_off_tension", row["hang_off_tension"], min),
                                  ("min_touchdown_s", row["touchdown_s"], min),
@@ -184,9 +187,33 @@ class Recorder:
             x = np.asarray(self.top_tension)
             st["hang_off_tension_mean"] = float(np.mean(x))
             st["hang_off_tension_std"] = float(np.std(x))
+            if self.irregular:
+                st.update(most_probable_maximum(np.asarray(self.times), x))
         if len(self.env["tension_max"]) and np.isfinite(self.env["tension_max"][0]):
             j = int(np.argmax(self.env["tension_max"]))
             st["max_tension"], st["max_tension_s"] = float(self.env["tension_max"][j]), float(
                 self.s[j])
         out.update({f"dynamic_{k}": v for k, v in st.items()})
         return out
+
+
+#: the storm duration of the most probable maximum [s] (3 h, the design storm's)
+STORM_DURATION = 10800.0
+
+
+def most_probable_maximum(t: np.ndarray, x: np.ndarray) -> dict:
+    """Statistics of an irregular response record x at times t [s] (``dynamic_*`` keys):
+    the mean zero-upcrossing period Tz [s] (upcrossings of the mean counted in the record)
+    and the most probable maximum over :data:`STORM_DURATION` by the Rayleigh
+    distribution of the peaks of a narrow-banded Gaussian process, mean + std sqrt(2
+    ln(D / Tz)) (a broad-banded or non-Gaussian response, a slack line or a seabed
+    contact that opens, is outside that model: the record's own max is given beside)."""
+    mean, std = float(np.mean(x)), float(np.std(x))
+    up = np.flatnonzero((x[:-1] < mean) & (x[1:] >= mean))
+    span = float(t[-1] - t[0]) if len(t) > 1 else 0.0
+    if len(up) < 2 or std == 0.0 or span <= 0.0:
+        return {}
+    tz = float(t[up[-1]] - t[up[0]]) / (len(up) - 1)
+    n = STORM_DURATION / tz
+    return {"hang_off_tension_tz": tz,
+            "hang_off_tension_mpm_3h": mean + std * float(np.sqrt(2.0 * np.log(n)))}

@@ -163,7 +163,8 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
     start = dyn.statistics_from if scene.waves is None or dyn.statistics_start is not None \
         else min(max(dyn.statistics_from, scene.waves.ramp), 0.5 * dyn.duration)
     rec = Recorder(mesh.s, start, dyn.save_states, scene.seabed is not None,
-                   elevation=elevation)
+                   elevation=elevation, irregular=bool(scene.waves is not None
+                                                       and scene.waves.spectrum is not None))
     # what a blow-up message names as its likely cause
     cause = {"critical_steps": steps, "time_step": dt,
              "emerging": model.use_surface and not emerge}
