@@ -17,6 +17,14 @@ Ends: the bottom end fixed in space; the hang-off moves by the complex amplitude
 ``motion`` = (D_x, D_y, D_z) [m]; both moment-free (dM = B = 0), or keeping their
 direction where ``[vfife] clamped_ends`` says so (the static state is the BVP's).
 
+Waves (:mod:`bvp.wave_loads`): a scene with one regular train (no spectrum) and no
+``motion`` given is driven by that wave: the hang-off moves as the vessel's RAOs say (at
+rest without a vessel; a harmonic ``[dynamics.top_motion]`` of the same period adds to
+it) and, unless ``line_loads`` is false, the line carries the wave's drag and Morison
+inertia, the inhomogeneous term of :func:`bvp.harmonic_equations.wave_forcing`. A trough
+below the static line's highest point is refused. An irregular sea:
+:mod:`bvp.sea_response`.
+
 Method: the box scheme (midpoint rule, second order) on a grid with nodes at every
 piece end, refined geometrically towards them down to an eighth of the bending length
 sqrt(EI/T); one sparse complex LU per family per iteration. The drag coefficients depend
@@ -31,16 +39,18 @@ from __future__ import annotations
 
 import math
 import time
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.sparse.linalg import splu
 
-from riser.errors import SceneError, UnsupportedSceneError
-from riser.response import HarmonicResponse, harmonic_motion, motion_amplitudes
+from riser.errors import UnsupportedSceneError
+from riser.response import HarmonicResponse, motion_amplitudes
 from riser.result import SolveResult, Status
 from riser.scene import Scene
 
 from . import harmonic_equations as he
+from . import wave_loads as wl
 from .modal_equations import (FAMILIES, Piece, box_matrix, build_pieces,
                               require_linearisable, state_scales)
 
@@ -50,23 +60,28 @@ RELAXATION = 0.5
 INTERVALS = 6000
 
 
-def solve_harmonic(scene: Scene, period: float, motion=None, *,
+def solve_harmonic(scene: Scene, period: float | None = None, motion=None, *,
                    static: SolveResult | None = None, tolerance: float = 1e-6,
                    max_iterations: int = 200, intervals: int = INTERVALS,
                    check_grid: bool = True) -> HarmonicResponse:
     """The harmonic response of the fixed-ends ``scene`` to the hang-off motion
-    ``motion`` (complex amplitudes x, y, z [m]; default the scene's harmonic
-    ``[dynamics.top_motion]``) of ``period`` [s] (see the module docstring). A scene the
-    model does not represent gives a ``refused`` result; a drag linearisation that does
-    not settle in ``max_iterations`` a ``not_converged`` one with the count and the last
-    change."""
+    ``motion`` (complex amplitudes x, y, z [m]) of ``period`` [s] (see the module
+    docstring). Without ``motion``: the scene's single regular wave train when it has one
+    (its period; the vessel's motion and the line's wave loads), else its harmonic
+    ``[dynamics.top_motion]`` (its period when ``period`` is None). A given ``motion`` is
+    the hang-off's alone (the scene's waves are not applied). A scene the model does not
+    represent gives a ``refused`` result; a drag linearisation that does not settle in
+    ``max_iterations`` a ``not_converged`` one with the count and the last change."""
     t0 = time.perf_counter()
     name = scene.name
     try:
-        motion = _motion(scene, motion)
+        period, motion, wave = wl.drive(scene, period, motion)
         require_harmonic(scene, motion)
+        if wave is not None:
+            ends = max(scene.ends.anchor_point[1], scene.ends.hang_off_point[1])
+            wl.require_submerged(scene, wave, ends, "the line's highest end")
     except UnsupportedSceneError as exc:
-        return HarmonicResponse("bvp", name, Status.REFUSED, str(exc), period)
+        return HarmonicResponse("bvp", name, Status.REFUSED, str(exc), period or 0.0)
     if not period > 0.0:
         raise ValueError(f"period must be > 0 s, got {period}")
     if static is None:
@@ -75,16 +90,32 @@ def solve_harmonic(scene: Scene, period: float, motion=None, *,
     if not static.converged:
         return HarmonicResponse("bvp", name, static.status, "the static solution did not "
                                 f"converge: {static.message}", period, motion)
+    forcing = None
+    if wave is not None:
+        try:
+            wl.require_submerged(scene, wave, float(np.max(static.profile.y)),
+                                 "the static line's highest point")
+        except UnsupportedSceneError as exc:
+            return HarmonicResponse("bvp", name, Status.REFUSED, str(exc), period, motion)
+        if scene.waves.line_loads:
+            forcing = wl.LineFlow(scene, static.profile, wave, 0)
     pieces = build_pieces(scene, static.profile)
-    coarse_s = _grid(pieces, intervals // 2)
-    coarse = _solve(scene, pieces, period, motion, tolerance, max_iterations, coarse_s)
+    coarse_s = grid(pieces, intervals // 2)
+    coarse = _solve(scene, pieces, period, motion, tolerance, max_iterations, coarse_s,
+                    forcing=forcing)
     out = coarse
     if coarse.converged and check_grid:
         fine_s = np.sort(np.concatenate([coarse_s, 0.5 * (coarse_s[1:] + coarse_s[:-1])]))
         fine = _solve(scene, pieces, period, motion, tolerance, max_iterations, fine_s,
-                      start=coarse.info.pop("coefficients"))
+                      start=coarse.info.pop("coefficients"), forcing=forcing)
         out = fine if not fine.converged else _richardson(fine, coarse)
     out.info.pop("coefficients", None)
+    if wave is not None:
+        out.info["wave"] = {"period": period, "height": 2.0 * float(wave.amplitude[0]),
+                            "heading_deg": math.degrees(float(wave.heading[0])),
+                            "phase_deg": math.degrees(float(wave.phase[0])),
+                            "line_loads": forcing is not None,
+                            "vessel": scene.vessel is not None}
     out.wall_time_s = time.perf_counter() - t0
     out.info["static_wall_time_s"] = static.wall_time_s
     return out
@@ -109,16 +140,15 @@ def transfer_sweep(scene: Scene, periods, axis: str, *, static: SolveResult | No
     return out
 
 
-def _motion(scene: Scene, motion) -> np.ndarray:
-    """The complex amplitudes (x, y, z) of ``motion``, else of the scene's harmonic
-    motion (:func:`riser.response.harmonic_motion`; refused as unsupported without one)."""
-    if motion is not None:
-        return np.asarray(motion, complex).reshape(3)
-    try:
-        axis, amplitude, _ = harmonic_motion(scene)
-    except SceneError as exc:
-        raise UnsupportedSceneError(str(exc)) from None
-    return motion_amplitudes(axis, amplitude)
+def require_wave(scene: Scene) -> None:
+    """Refuse, before solving (UnsupportedSceneError), a regular-wave scene the frequency
+    domain does not represent: the checks of :func:`solve_harmonic` that need no static
+    state (the drive, :func:`require_harmonic`, a trough below the line's highest end)."""
+    _, motion, wave = wl.drive(scene, None, None)
+    require_harmonic(scene, motion)
+    if wave is not None:
+        ends = max(scene.ends.anchor_point[1], scene.ends.hang_off_point[1])
+        wl.require_submerged(scene, wave, ends, "the line's highest end")
 
 
 def require_harmonic(scene: Scene, motion: np.ndarray) -> None:
@@ -140,7 +170,7 @@ def require_harmonic(scene: Scene, motion: np.ndarray) -> None:
 
 
 # ------------------------------------------------------------------ the solution
-def _grid(pieces: list[Piece], intervals: int) -> np.ndarray:
+def grid(pieces: list[Piece], intervals: int) -> np.ndarray:
     """Grid nodes: every piece end, ~``intervals`` over the line in proportion to the
     pieces' lengths, refined geometrically (x 1.25) towards each piece end from an
     eighth of the piece's bending length sqrt(EI / T_max)."""
@@ -183,20 +213,39 @@ def _fields(scene: Scene, pieces: list[Piece], s: np.ndarray, which: np.ndarray)
     else:
         V, Vp = np.zeros(s.size), np.zeros(s.size)
     vn0, vt0 = -V * np.sin(theta), V * np.cos(theta)
-    return {"theta": theta, "V": V, "Vp": Vp, "c_n": c_n, "c_t": c_t, "csb": csb,
+    return {"theta": theta, "y": y, "V": V, "Vp": Vp, "c_n": c_n, "c_t": c_t, "csb": csb,
             "vn0": vn0, "vt0": vt0, "ft0": c_t * np.abs(vt0) * vt0}
 
 
-def _solve(scene, pieces, period, motion, tol, max_iter, s, start=None) -> HarmonicResponse:
-    """The response on the grid ``s``; ``start``: drag coefficients (s_mid, Cn, Cz, Ct)
-    of a coarser grid to start from (interpolated)."""
-    omega = 2.0 * math.pi / period
-    c_s = scene.dynamics.damping if scene.dynamics is not None else 0.0
+@dataclass
+class Setup:
+    """What the responses on one grid share, whatever the frequency: the grid ``s`` (N +
+    1,) [m], its steps ``h`` and midpoints ``mid`` (N,), the piece of each midpoint
+    ``which``, the static fields ``f`` at the midpoints (:func:`_fields`; the drag
+    coefficients Cn, Cz, Ct [N s/m2] are set in it by the caller), the undamped (A, B)
+    per family ``ops``, the structural damping ``c_s`` [1/s] and the clamped ends."""
+
+    pieces: list
+    s: np.ndarray
+    h: np.ndarray
+    mid: np.ndarray
+    which: np.ndarray
+    f: dict
+    ops: dict
+    c_s: float
+    clamped: tuple
+
+    @property
+    def has_drag(self) -> bool:
+        return bool(np.any(self.f["c_n"] > 0.0) or np.any(self.f["c_t"] > 0.0))
+
+
+def prepare(scene: Scene, pieces: list[Piece], s: np.ndarray) -> Setup:
+    """The :class:`Setup` of the grid ``s``."""
     h = np.diff(s)
     mid = s[:-1] + 0.5 * h
     ends_at = np.array([pc.s1 for pc in pieces])
     which = np.clip(np.searchsorted(ends_at, mid), 0, len(pieces) - 1)
-    f = _fields(scene, pieces, mid, which)
     ops = {}
     for plane, fam in FAMILIES.items():
         A = np.zeros((mid.size, fam.n, fam.n))
@@ -206,25 +255,55 @@ def _solve(scene, pieces, period, motion, tol, max_iter, s, start=None) -> Harmo
             a, b = fam.matrices(pc, mid[sel])
             A[sel], B[sel] = np.moveaxis(a, -1, 0), np.moveaxis(b, -1, 0)
         ops[plane] = (A, B)
-    # start from the small-amplitude coefficients (zero in still water)
-    zero = np.zeros(mid.size, complex)
-    Cn, Cz, Ct = he.equivalent_coefficients(f["vn0"], f["vt0"], zero, zero, zero,
-                                            f["c_n"], f["c_t"])
+    c_s = scene.dynamics.damping if scene.dynamics is not None else 0.0
+    return Setup(pieces, s, h, mid, which, _fields(scene, pieces, mid, which), ops, c_s,
+                 tuple(scene.vfife.clamped_ends))
+
+
+def respond(setup: Setup, omega: float, motion: np.ndarray, flow: dict | None = None):
+    """The states (Y (N + 1, 6), Z (N + 1, 4)) [SI] at the grid's nodes for the circular
+    frequency omega [rad/s], the hang-off motion (3,) complex [m] and the wave's flow at
+    the midpoints (:meth:`bvp.wave_loads.LineFlow.at`, or None), with the drag
+    coefficients in ``setup.f``."""
+    out = []
+    for plane in FAMILIES:
+        g = he.wave_forcing(plane, flow, setup.f) if flow is not None else None
+        out.append(_family(setup, plane, omega, motion, g))
+    return out[0], out[1]
+
+
+def start_coefficients(setup: Setup, flow: dict | None):
+    """The drag coefficients (Cn, Cz, Ct) of the line at rest in the static current and
+    the wave's flow (the small-amplitude values in a current, ~0 in still water)."""
+    f = setup.f
+    zero = np.zeros(setup.mid.size, complex)
+    a = (flow["un"], flow["uz"], flow["ut"]) if flow is not None else (zero, zero, zero)
+    return he.equivalent_coefficients(f["vn0"], f["vt0"], *a, f["c_n"], f["c_t"])
+
+
+def _solve(scene, pieces, period, motion, tol, max_iter, s, start=None,
+           forcing=None) -> HarmonicResponse:
+    """The response on the grid ``s``; ``start``: drag coefficients (s_mid, Cn, Cz, Ct)
+    of a coarser grid to start from (interpolated); ``forcing``: the wave's
+    :class:`bvp.wave_loads.LineFlow` (None: no wave load)."""
+    omega = 2.0 * math.pi / period
+    setup = prepare(scene, pieces, s)
+    f, mid = setup.f, setup.mid
+    flow = forcing.at(mid, f["theta"], f["y"]) if forcing is not None else None
+    Cn, Cz, Ct = start_coefficients(setup, flow)
     if start is not None:
         Cn, Cz, Ct = (np.interp(mid, start[0], c) for c in start[1:])
-    has_drag = bool(np.any(f["c_n"] > 0.0) or np.any(f["c_t"] > 0.0))
-    clamped = tuple(scene.vfife.clamped_ends)
+    has_drag = setup.has_drag
     change, it = np.inf, 0
     for it in range(1, max_iter + 1):
         f.update(Cn=Cn, Cz=Cz, Ct=Ct)
-        Y = _family(pieces, "in_plane", ops, s, h, omega, c_s, f, motion, clamped)
-        Z = _family(pieces, "out_of_plane", ops, s, h, omega, c_s, f, motion, clamped)
+        Y, Z = respond(setup, omega, motion, flow)
         if not has_drag:
             change = 0.0
             break
         Ym, Zm = 0.5 * (Y[1:] + Y[:-1]), 0.5 * (Z[1:] + Z[:-1])
         new = he.equivalent_coefficients(f["vn0"], f["vt0"],
-                                         *he.relative_velocity(Ym, Zm, omega, f),
+                                         *he.relative_velocity(Ym, Zm, omega, f, flow),
                                          f["c_n"], f["c_t"])
         old = (Cn, Cz, Ct)
         top = max(float(np.max(np.abs(c))) for c in new) or 1.0
@@ -244,18 +323,23 @@ def _solve(scene, pieces, period, motion, tol, max_iter, s, start=None) -> Harmo
     return _result(scene, pieces, period, motion, s, Y, Z, info)
 
 
-def _family(pieces, plane, ops, s, h, omega, c_s, f, motion, clamped) -> np.ndarray:
-    """States (N + 1, n) of one family by the box scheme (see the module docstring)."""
+def _family(setup: Setup, plane: str, omega: float, motion: np.ndarray,
+            g: np.ndarray | None = None) -> np.ndarray:
+    """States (N + 1, n) of one family by the box scheme (see the module docstring);
+    ``g`` (N, n): the inhomogeneous term at the midpoints [SI] (None: none)."""
     fam = FAMILIES[plane]
+    pieces, s, h = setup.pieces, setup.s, setup.h
     n, N = fam.n, h.size
-    b0 = fam.clamped if "bottom" in clamped else fam.pinned
-    b1 = fam.clamped if "top" in clamped else fam.pinned
+    b0 = fam.clamped if "bottom" in setup.clamped else fam.pinned
+    b1 = fam.clamped if "top" in setup.clamped else fam.pinned
     driven = [(k, i) for k, i in enumerate(b1)
               if fam.disp[i] is not None and motion[fam.disp[i]] != 0.0]
-    if not driven:
-        return np.zeros((N + 1, n), complex)      # no motion of this family
-    A, B = ops[plane]
-    K = (he.in_plane if plane == "in_plane" else he.out_of_plane)(A, B, omega, c_s, f)
+    loaded = g is not None and bool(np.any(g != 0.0))
+    if not driven and not loaded:
+        return np.zeros((N + 1, n), complex)      # neither moved nor loaded
+    A, B = setup.ops[plane]
+    K = (he.in_plane if plane == "in_plane" else he.out_of_plane)(A, B, omega, setup.c_s,
+                                                                  setup.f)
     L = s[-1] - s[0]
     wave = 2.0 * math.pi * math.sqrt(max(float(np.max(np.abs(pc.spl["T"](pc.s1))))
                                          for pc in pieces) / max(pc.m + pc.ma
@@ -266,6 +350,9 @@ def _family(pieces, plane, ops, s, h, omega, c_s, f, motion, clamped) -> np.ndar
     hh = 0.5 * h[:, None, None]
     M = box_matrix(-eye - hh * K, eye - hh * K, (b0, b1), 1.0 + 0.0j)
     rhs = np.zeros((N + 1) * n, complex)
+    if loaded:
+        # the box rows Y[j+1] - Y[j] - h K Ymid = h g_mid, scaled as K: g / sc
+        rhs[len(b0):len(b0) + N * n] = (h[:, None] * g / sc[None, :]).ravel()
     for k, i in driven:
         rhs[len(b0) + N * n + k] = motion[fam.disp[i]] / sc[i]
     # the matrix is block-bidiagonal with the end rows: no fill-reducing ordering needed

@@ -28,6 +28,17 @@ cos theta, sn = sin theta of the static tangent; V(y) the in-plane current speed
   frame's), so dF' += df_n, dT' -= df_t; out of plane the z force balance gains
   -df_z - f_t0 psi (the tangential drag f_t0 along the tilted tangent).
 
+Waves (:mod:`bvp.wave_loads`): the fluid velocity of a wave component (complex amplitudes
+u_wn, u_wz, u_wt on the static line) adds to the relative velocity, dV_n += u_wn, dV_z +=
+u_wz, dV_t += u_wt, and its acceleration loads the line through the fluid inertia:
+normal (a_wn, a_wz) with (1 + C_a) rho pi D^2 / 4 = M [kg/m] (Froude-Krylov and added
+mass), tangential (a_wt) with rho pi D^2 / 4 = M_t (the axial Froude-Krylov force alone,
+as the VFIFE applies it: see docs/theory.md, Waves). The load increment is then df_n =
+C_n dV_n + M a_wn, df_z = C_z dV_z + M a_wz, df_t = C_t dV_t + M_t a_wt: the part of the
+line's own motion stays in the operator K, the wave's part is the inhomogeneous term g of
+y' = K y + g (:func:`wave_forcing`): g_F = C_n u_wn + M a_wn, g_T = -(C_t u_wt + M_t
+a_wt), g_Q = -(C_z u_wz + M a_wz).
+
 Equivalent linearisation ("equal work per cycle" per direction): for the relative
 velocity v(phi) = v_0 + Re(a e^{i phi}) (a the complex amplitude of dV), the coefficient
 of direction j is C_j = c <f_j(v) ~v_j> / <~v_j^2>, averaged over a cycle of phi: the
@@ -104,9 +115,30 @@ def out_of_plane(A: np.ndarray, B: np.ndarray, omega: float, c_s: float,
     return K
 
 
-def relative_velocity(Y: np.ndarray, Z: np.ndarray, omega: float, f: dict):
+def wave_forcing(plane: str, flow: dict, f: dict) -> np.ndarray:
+    """The wave's inhomogeneous term g (m, n) complex of y' = K y + g (SI units of the
+    states' derivatives: [N/m] in the force rows) for ``plane`` ('in_plane' or
+    'out_of_plane'), from the wave's flow on the line (:meth:`bvp.wave_loads.LineFlow.at`:
+    un, ut, uz [m/s], an, at, az [m/s2], inertia, inertia_t [kg/m]) and the drag
+    coefficients Cn, Cz, Ct of ``f`` (see the module docstring): drag and the normal
+    inertia (1 + C_a) rho A a_n in the normal rows, drag and the axial Froude-Krylov force
+    rho A a_t in the tension row."""
+    m = flow["un"].size
+    if plane == "in_plane":
+        g = np.zeros((m, 6), complex)
+        g[:, 4] = f["Cn"] * flow["un"] + flow["inertia"] * flow["an"]      # dF'
+        g[:, 5] = -(f["Ct"] * flow["ut"] + flow["inertia_t"] * flow["at"])  # dT'
+    else:
+        g = np.zeros((m, 4), complex)
+        g[:, 3] = -(f["Cz"] * flow["uz"] + flow["inertia"] * flow["az"])   # Q'
+    return g
+
+
+def relative_velocity(Y: np.ndarray, Z: np.ndarray, omega: float, f: dict,
+                      flow: dict | None = None):
     """Complex amplitudes (a_n, a_z, a_t) [m/s] of the oscillating relative velocity at
-    the m points from the in-plane states Y (m, 6) and out-of-plane states Z (m, 4)."""
+    the m points from the in-plane states Y (m, 6) and out-of-plane states Z (m, 4),
+    plus the wave's flow (un, uz, ut [m/s] of :func:`wave_forcing`) when given."""
     c, sn = np.cos(f["theta"]), np.sin(f["theta"])
     V, Vp = f["V"], f["Vp"]
     dx, dy, dth = Y[:, 0], Y[:, 1], Y[:, 2]
@@ -114,4 +146,6 @@ def relative_velocity(Y: np.ndarray, Z: np.ndarray, omega: float, f: dict):
     a_n = -Vp * sn * dy - V * c * dth - iw * (-sn * dx + c * dy)
     a_t = Vp * c * dy - V * sn * dth - iw * (c * dx + sn * dy)
     a_z = -V * c * Z[:, 1] - iw * Z[:, 0]
+    if flow is not None:
+        a_n, a_z, a_t = a_n + flow["un"], a_z + flow["uz"], a_t + flow["ut"]
     return a_n, a_z, a_t

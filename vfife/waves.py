@@ -3,7 +3,8 @@
 The scene's waves (:mod:`riser.waves`, its components and conventions) load the line by
 Morison's equation: the drag on the velocity relative to the water (current plus the
 waves' particle velocity, normal and tangential, :func:`vfife.kernels.node_pass`) and the
-fluid inertia force rho A ((1 + C_a) a_n + a_t), A = pi D^2 / 4, a_n and a_t the fluid
+fluid inertia force rho A ((1 + C_a) a_n + a_t), A = pi D^2 / 4 (D the hydrodynamic
+diameter, as the added mass and the drag take it), a_n and a_t the fluid
 acceleration's parts normal and tangential to the line, each times the node's immersed
 fraction under the instantaneous surface (the sea surface of the kinematics, y = h + eta
 at the node). The tangential part is the Froude-Krylov force of the axial pressure
@@ -57,7 +58,10 @@ class WaveLoads:
         self.ramp_time = comp.ramp_time
         ends = np.cumsum([seg.length for seg in scene.segments])
         types = [scene.line_types[seg.line_type] for seg in scene.segments]
-        area = np.array([math.pi / 4.0 * lt.outer_diameter ** 2 for lt in types])
+        # the hydrodynamic diameter, as the added mass and the drag take it
+        dh = [seg.hydro_diameter or lt.hydro_diameter or lt.outer_diameter
+              for seg, lt in zip(scene.segments, types)]
+        area = np.array([math.pi / 4.0 * d ** 2 for d in dh])
         ca = np.array([lt.added_mass for lt in types])
         s_mid = 0.5 * (mesh.s[1:] + mesh.s[:-1])
         seg = np.clip(np.searchsorted(ends, s_mid, side="left"), 0, len(area) - 1)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from riser.errors import SceneError
 from verification import peers
 from verification.catalog import resolve
 from verification.runtime import outdir
@@ -81,17 +82,21 @@ def parse_amplitudes(text: str | None) -> list[float] | None:
 
 def cmd_compare_dynamics(args) -> int:
     """``compare SCENE --dynamics``: the static comparison, then the scene's harmonic
-    motion by the frequency domain and the VFIFE (verification.comparison.dynamics)."""
-    from verification.comparison import dynamics_report
+    motion (or regular wave) by the frequency domain and the VFIFE
+    (verification.comparison.dynamics); an irregular sea: cmd_compare_sea."""
+    from verification.comparison import dynamics_report, sea_report
     from verification.comparison.dynamics import check_motions, compare_dynamics
     from verification.comparison.protocol import compare, default_columns
     from verification.comparison.report import report_markdown, write
-    files = outdir.COMPARE + dynamics_report.FILES + tuple(
+    from verification.comparison.sea_dynamics import is_sea
+    files = outdir.COMPARE + dynamics_report.FILES + sea_report.FILES + tuple(
         f for name in peers.names() for f in peers.peer(name).files)
     outdir.clear(args.out, files)
     check_ranges(args)
     amplitudes = parse_amplitudes(args.amplitudes)
     scene = resolve(args.scene)
+    if is_sea(scene):
+        return cmd_compare_sea(args, scene, files)
     check_motions(scene, amplitudes)          # before solving: exit 2 on a bad motion
     out = out_folder(args, Path("out") / scene.name / "compare-dynamics", files)
     check_overrides(scene, args)
@@ -115,6 +120,39 @@ def cmd_compare_dynamics(args) -> int:
     warned = max(print_warnings(comp.bvp, args.strict), print_warnings(comp.vfife, args.strict))
     dyn_warned = args.strict and any(r.warnings for r in dc.results)
     return 0 if comp.passed and dc.passed and not warned and not dyn_warned else 1
+
+
+def cmd_compare_sea(args, scene, files) -> int:
+    """``compare SCENE --dynamics`` of a scene with an irregular sea: the static
+    comparison, then the sea by the frequency domain and the VFIFE's record
+    (verification.comparison.sea_dynamics)."""
+    from verification.comparison import sea_report
+    from verification.comparison.protocol import compare, default_columns
+    from verification.comparison.report import report_markdown, write
+    from verification.comparison.sea_dynamics import check_sea, compare_sea
+    if args.amplitudes:
+        raise SceneError("command line", "--amplitudes", "not with an irregular sea (its "
+                         "Hs is the scene's)")
+    if args.peer:
+        raise SceneError("command line", "--peer", "not with an irregular sea (the peers "
+                         "compare a harmonic response)")
+    check_sea(scene)                           # before solving: exit 2
+    out = out_folder(args, Path("out") / scene.name / "compare-dynamics", files)
+    check_overrides(scene, args)
+    with progress_for(args, f"compare {scene.name} --dynamics (sea)") as prog:
+        comp = compare(scene, element_length=args.element_length, columns=default_columns(),
+                       folder=out, paper_model=False, progress=prog)
+        sc = compare_sea(scene, element_length=args.element_length, static=comp.bvp,
+                         progress=prog)
+        write(comp, out)
+        sea_report.write(sc, out, report_markdown(comp, heading="##"))
+    print(f"{scene.name}: static comparison {'PASS' if comp.passed else 'FAIL'}")
+    for line in sea_report.console_lines(sc):
+        print(line)
+    print(f"{scene.name} sea: {'PASS' if sc.passed else 'FAIL'}; wrote "
+          f"{out}/sea_agreement.csv, report.md")
+    warned = max(print_warnings(comp.bvp, args.strict), print_warnings(comp.vfife, args.strict))
+    return 0 if comp.passed and sc.passed and not warned else 1
 
 
 def cmd_modes(args) -> int:

@@ -39,7 +39,7 @@ import numpy as np
 
 import bvp
 import vfife
-from bvp.harmonic import require_harmonic, solve_harmonic
+from bvp.harmonic import require_harmonic, require_wave, solve_harmonic
 from riser.dynamics import Dynamics, TopMotion
 from riser.errors import SceneError, SolveFailed, UnsupportedSceneError
 from riser.response import HarmonicResponse, harmonic_motion, motion_amplitudes
@@ -107,12 +107,57 @@ class DynamicComparison:
         return all(r.passed for r in self.results)
 
 
+#: the ``axis`` of a comparison driven by a regular wave (and the vessel's motion in it)
+WAVE = "wave"
+
+
+def is_wave(scene: Scene) -> bool:
+    """True when the comparison is driven by the scene's waves (a regular train)."""
+    return scene.waves is not None
+
+
+def wave_scene(scene: Scene, amplitude: float, ramp_time: float | None = None) -> Scene:
+    """``scene`` with its one regular train at ``amplitude`` [m] (half the height) and the
+    waves' ramp ``ramp_time`` [s] (None: unchanged)."""
+    w = scene.waves
+    tr = w.trains[0].replace(height=2.0 * amplitude)
+    new = w.replace(trains=(tr,), ramp_time=w.ramp_time if ramp_time is None else ramp_time)
+    return scene.replace(waves=new)
+
+
+def check_waves(scene: Scene, amplitudes=None) -> tuple[str, float, list[float]]:
+    """(:data:`WAVE`, period [s], the wave amplitudes [m] sorted) of a comparison driven
+    by the scene's one regular train: every amplitude checked before solving (the
+    train's own limits, the frequency domain's line in the water). An irregular sea is
+    compared by :mod:`.sea_dynamics`; several trains or a top motion beside the waves are
+    refused (one period, one drive). SceneError naming the key (exit 2)."""
+    w = scene.waves
+    if w.spectrum is not None or len(w.trains) != 1:
+        raise SceneError(scene.source, "environment.waves", "the harmonic comparison takes "
+                         "one regular train (an irregular sea: its own comparison, several "
+                         "trains: one at a time)")
+    if scene.dynamics is not None and scene.dynamics.top_motion is not None:
+        raise SceneError(scene.source, "dynamics.top_motion", "not with waves in the "
+                         "dynamic comparison (one drive: the waves, with a [vessel] for "
+                         "the hang-off's motion)")
+    tr = w.trains[0]
+    amps = sorted(amplitudes) if amplitudes else [0.5 * tr.height]
+    for a in amps:
+        ws = wave_scene(scene, a)                        # its checks, its key
+        if isinstance(scene.ends, FixedEnds):
+            require_wave(ws)
+    return WAVE, tr.period, amps
+
+
 def check_motions(scene: Scene, amplitudes=None) -> tuple[str, float, list[float]]:
     """(axis, period [s], the amplitudes [m] sorted) of the comparison, every amplitude
     checked before anything is solved: a harmonic motion (:func:`riser.response.
     harmonic_motion`), plausible (the top motion's own limits) and, for fixed ends, the
-    frequency domain's (the hang-off kept in the water). SceneError / UnsupportedSceneError
-    naming the key (exit 2)."""
+    frequency domain's (the hang-off kept in the water); a scene with waves: its regular
+    train (:func:`check_waves`, axis :data:`WAVE`, wave amplitudes). SceneError /
+    UnsupportedSceneError naming the key (exit 2)."""
+    if is_wave(scene):
+        return check_waves(scene, amplitudes)
     axis, amp0, period = harmonic_motion(scene)
     amps = sorted(amplitudes) if amplitudes else [amp0]
     for a in amps:
@@ -163,12 +208,14 @@ def dynamic_scene(scene: Scene, axis: str, amplitude: float, period: float,
     statics."""
     dyn = scene.dynamics
     total = (ramp + settle + WINDOW_PERIODS) * period
+    motion = None if axis == WAVE else TopMotion(axis=axis, amplitude=amplitude,
+                                                 period=period, ramp_time=ramp * period)
     new = Dynamics(duration=total, output_interval=period / SAMPLES_PER_PERIOD,
-                   top_motion=TopMotion(axis=axis, amplitude=amplitude, period=period,
-                                        ramp_time=ramp * period),
-                   damping=dyn.damping if dyn is not None else 0.0,
+                   top_motion=motion, damping=dyn.damping if dyn is not None else 0.0,
                    statistics_start=(ramp + settle) * period,
                    save_states=True)
+    if axis == WAVE:
+        scene = wave_scene(scene, amplitude, ramp * period)
     vf, f = scene.vfife, STATIC_TIGHTENING
     return scene.replace(dynamics=new, **{
         "vfife.static_tolerance": vf.static_tolerance * f,
@@ -213,8 +260,12 @@ def compare_dynamics(scene: Scene, *, amplitudes=None, element_length: float | N
     for k, a in enumerate(amps):
         fd_scene = matched if fd_modifier is None else fd_modifier(matched)
         now(f"frequency domain: amplitude {a:g} m ({k + 1}/{len(amps)})")
-        fd = solve_harmonic(fd_scene, period, motion_amplitudes(axis, a),
-                            static=static if fd_modifier is None else None)
+        if axis == WAVE:
+            fd = solve_harmonic(wave_scene(fd_scene, a),
+                                static=static if fd_modifier is None else None)
+        else:
+            fd = solve_harmonic(fd_scene, period, motion_amplitudes(axis, a),
+                                static=static if fd_modifier is None else None)
         if fd.status.value == "refused":
             raise UnsupportedSceneError(fd.message)
         if not fd.converged:

@@ -26,7 +26,7 @@ from verification.report.figures import new_figure, save
 from verification.report.markdown import GENERATED_NOTE, fmt, md_table, pct
 
 from .dynamic_rows import DRIFT_LIMIT, TOLERANCES
-from .dynamics import RAMP_PERIODS, SETTLE_PERIODS, WINDOW_PERIODS, DynamicComparison
+from .dynamics import RAMP_PERIODS, SETTLE_PERIODS, WAVE, WINDOW_PERIODS, DynamicComparison
 
 FILES = ("dynamic_agreement.csv", "stations.csv", "response.csv", "transfer.csv",
          "transfer_along_s.csv", "response.png", "sweep.png", "transfer.png", "report.md")
@@ -45,6 +45,8 @@ def transfer(dc: DynamicComparison) -> tuple[pd.DataFrame, pd.DataFrame]:
     smallest amplitude of the sweep: (the hang-off tension and the largest moment and
     curvature per period, the tension, moment and curvature amplitudes along s at
     :data:`TRANSFER_STATIONS` stations per period)."""
+    if dc.axis == WAVE:                    # transfer functions per unit hang-off motion
+        return pd.DataFrame(), pd.DataFrame()
     lo, hi = TRANSFER_SPAN
     periods = dc.period * np.geomspace(lo, hi, TRANSFER_PERIODS)
     amp = dc.results[0].amplitude
@@ -114,8 +116,20 @@ def markdown(dc: DynamicComparison, static_markdown: str = "", peer_markdown: st
     lines = [f"{heading} Dynamic response, frequency domain vs VFIFE: `{sc.name}`", "",
              GENERATED_NOTE, "", f"**Verdict: {verdict}** (the judged rows of every "
              "amplitude; the static comparison has its own verdict)", ""]
-    lines += [f"- Motion: d(t) = A sin(2 pi t / T) along {dc.axis}, T = {dc.period:g} s, "
-              f"A = {', '.join(f'{r.amplitude:g}' for r in dc.results)} m.",
+    amps = ', '.join(f'{r.amplitude:g}' for r in dc.results)
+    if dc.axis == WAVE:
+        tr = dc.scene.waves.trains[0]
+        drive = (f"- Wave: Airy, period T = {dc.period:g} s, amplitude A = {amps} m, "
+                 f"heading {tr.heading_deg:g} deg, phase lag {tr.phase_deg:g} deg at the "
+                 "waves' origin; " + ("the hang-off moves with the vessel's RAOs"
+                                      if dc.scene.vessel is not None else
+                                      "the hang-off fixed") + (
+                     "; the line loaded by the wave (Morison drag and inertia)"
+                     if dc.scene.waves.line_loads else "; no wave load on the line") + ".")
+    else:
+        drive = (f"- Motion: d(t) = A sin(2 pi t / T) along {dc.axis}, T = {dc.period:g} s, "
+                 f"A = {amps} m.")
+    lines += [drive,
               "- Frequency domain (`bvp/harmonic.py`): linearised about the BVP static "
               "state, drag by equal work per cycle (iterated), touchdown fixed at the static "
               "one, the line wholly in the water.",
