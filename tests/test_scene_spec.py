@@ -190,6 +190,8 @@ def expected_scene(data: dict) -> dict:
     out["ends"] = {k: tuple(v) if isinstance(v, list) else v for k, v in e.items()}
     dyn = data.get("dynamics")
     out["dynamics"] = None if dyn is None else expected_dynamics(dyn)
+    out["waves"] = expected_waves(env.get("waves"))
+    out["vessel"] = expected_vessel(data.get("vessel"))
     flow = data.get("internal_flow")
     out["internal_flow"] = None if flow is None else {
         "speed": flow["speed"], "top_pressure": flow.get("top_pressure", 0.0),
@@ -197,6 +199,39 @@ def expected_scene(data: dict) -> dict:
         "slug_length": flow.get("slug", {}).get("slug_length"),
         "phase_deg": flow.get("slug", {}).get("phase_deg", 0.0)}
     return out
+
+
+def _numbers(v):
+    return None if v is None else tuple(float(x) for x in v)
+
+
+def expected_waves(w: dict | None) -> dict | None:
+    """[environment.waves] with the defaults docs/scene-files.md states."""
+    if w is None:
+        return None
+    sp = w.get("spectrum")
+    spectrum = None if sp is None else {
+        "kind": sp["kind"], "hs": sp.get("hs"), "tp": sp.get("tp"), "gamma": sp.get("gamma"),
+        "omega": _numbers(sp.get("omega")), "density": _numbers(sp.get("density")),
+        "heading_deg": sp.get("heading_deg", 0.0), "components": sp.get("components", 200),
+        "omega_min": sp.get("omega_min"), "omega_max": sp.get("omega_max"),
+        "seed": sp.get("seed", 1)}
+    trains = tuple({"height": t["height"], "period": t["period"],
+                    "heading_deg": t.get("heading_deg", 0.0), "phase_deg": t.get("phase_deg", 0.0)}
+                   for t in w.get("trains", []))
+    return {"trains": trains, "spectrum": spectrum, "stretching": w.get("stretching", "wheeler"),
+            "origin": _numbers(w.get("origin")), "line_loads": w.get("line_loads", True),
+            "ramp_time": w.get("ramp_time")}
+
+
+def expected_vessel(v: dict | None) -> dict | None:
+    """[vessel] and its [[vessel.raos]] as the file gives them."""
+    if v is None:
+        return None
+    raos = tuple({k: (tuple(x) if isinstance(x, list) else x) for k, x in r.items()}
+                 for r in v["raos"])
+    return {"raos": raos, "heading_deg": v.get("heading_deg", 0.0),
+            "hang_off_on_vessel": _numbers(v.get("hang_off_on_vessel", [0.0, 0.0, 0.0]))}
 
 
 def expected_line_type(name: str, t: dict) -> dict:

@@ -22,7 +22,7 @@ from verification.studies import dynamics as dyn_study
 
 REPORTS = Path(__file__).resolve().parents[1] / "reports"
 #: the studies with one folder per unit (scene) under reports/NAME/
-PER_UNIT = {"compare", "cost", "modes", "dynamics", "cross_current"}
+PER_UNIT = {"compare", "cost", "modes", "dynamics", "cross_current", "sea_states"}
 #: the verdicts a study's index row may give; pass/fail studies must pass on the committed
 #: reports (the suite's claims), the reproductions of incomplete papers only report
 VERDICTS = {
@@ -32,6 +32,7 @@ VERDICTS = {
     "yu2021": {"reported (paper inputs incomplete)"},
     "liu2021": {"reported (paper inputs incomplete)"},
     "cost": {"reported (orders: `--full`)", "reported"},
+    "sea_states": {"pass"},
 }
 #: the files of a solve that only a dynamic run writes (compare: none of its scenes has one)
 DYNAMIC = {"timeseries.csv", "envelope.csv", "states.npz", "timeseries.png", "envelope.png"}
@@ -51,6 +52,8 @@ def expected_files(name: str, folder: Path) -> set[str]:
     without the files that do not apply to its scene (a dynamic run's, the analytic
     column's when it did not run: no value in agreement.csv's ``analytic_rel_diff``)."""
     names = set(outdir.STUDY_FILES[name])
+    if name == "sea_states":       # each unit its own files
+        return set(outdir.SEA_STATES_UNITS[folder.name])
     if name == "dynamics":          # the static comparison, then a folder per case
         names |= {f"{case}/{f}" for case, *_ in dyn_study.cases(folder.name)
                   for f in dynamics_report.FILES}
@@ -71,7 +74,7 @@ def expected_files(name: str, folder: Path) -> set[str]:
 
 
 def test_the_registry_lists_every_study_once():
-    assert len(STUDIES) == len(set(STUDIES)) == 10
+    assert len(STUDIES) == len(set(STUDIES)) == 11
     assert set(VERDICTS) == set(STUDIES) == set(outdir.STUDY_FILES)
 
 

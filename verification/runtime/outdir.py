@@ -43,17 +43,21 @@ MODES = ("modes.csv", "agreement.csv", "report.md", "mode_shapes_in_plane.png",
          "mode_shapes_out_of_plane.png")
 #: each scene folder of ``reproduce cross_current``
 CROSS_CURRENT = ("agreement.csv", "headings.csv", "headings.png", "report.md")
-#: each unit folder of ``reproduce sea_states`` (lowe-langley; two-methods, with a
-#: folder per scene holding its comparison's files)
-SEA_STATES = ("tension.csv", "cases.csv", "tension.png", "report.md", "agreement.csv",
-              *(f"{scene}/{name}" for scene in ("jumper-wave", "jumper-wave-45",
-                                                "jumper-vessel-wave")
-                for name in ("dynamic_agreement.csv", "stations.csv", "response.csv",
-                             "transfer.csv", "transfer_along_s.csv", "response.png",
-                             "sweep.png", "transfer.png", "report.md")),
-              *(f"jumper-sea/{name}" for name in (
-                  "sea_agreement.csv", "sea_along_s.csv", "spectra.csv", "sea_response.png",
-                  "spectra.png", "sea_tension.png", "report.md")))
+#: each unit folder of ``reproduce sea_states``: its files (two-methods: a folder per scene
+#: holding its comparison's files); ``SEA_STATES`` all of them (what a unit clears)
+SEA_STATES_UNITS = {
+    "lowe-langley": ("tension.csv", "cases.csv", "tension.png", "report.md"),
+    "two-methods": ("agreement.csv", "cases.csv", "report.md",
+                    *(f"{scene}/{name}" for scene in ("jumper-wave", "jumper-wave-45",
+                                                      "jumper-vessel-wave")
+                      for name in ("dynamic_agreement.csv", "stations.csv", "response.csv",
+                                   "transfer.csv", "transfer_along_s.csv", "response.png",
+                                   "sweep.png", "transfer.png", "report.md")),
+                    *(f"jumper-sea/{name}" for name in (
+                        "sea_agreement.csv", "sea_along_s.csv", "spectra.csv",
+                        "sea_response.png", "spectra.png", "sea_tension.png",
+                        "report.md")))}
+SEA_STATES = tuple(dict.fromkeys(f for files in SEA_STATES_UNITS.values() for f in files))
 #: ``stress`` and ``reproduce stress``
 STRESS = ("summary.csv", "report.md")
 #: ``bench``

@@ -33,10 +33,6 @@ SCENES = {"jumper-wave": "regular wave, head-on",
           "jumper-wave-45": "regular wave at 45 deg (3D)",
           "jumper-vessel-wave": "regular wave and the vessel's RAO motion",
           "jumper-sea": "JONSWAP sea, 100 components"}
-#: the files of the unit (each scene's folder holds its comparison's files)
-FILES = ("agreement.csv", "cases.csv", "report.md") + tuple(
-    f"{name}/{f}" for name in SCENES for f in (
-        sea_report.FILES if name == "jumper-sea" else dynamics_report.FILES))
 
 
 def run_unit(out: Path, note: str = "") -> str:
