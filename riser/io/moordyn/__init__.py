@@ -3,4 +3,6 @@
 :mod:`.deck` (the text read into tables, and its sections and option names),
 :mod:`.options` (the OPTIONS as MoorDyn-C reads them: its defaults, what a scene honours,
 refuses or does not carry), :mod:`.scene_from_deck` (deck -> scene) and
-:mod:`.deck_from_scene` (scene -> deck: equivalent sections, and the deck's text)."""
+:mod:`.deck_from_scene` (scene -> deck: equivalent sections, and the deck's text) and
+:mod:`.waves` (WaveKin 7's wave_frequencies.txt: MoorDyn-C's summed wave components read
+into a scene's trains and written from its components)."""

@@ -25,6 +25,10 @@ the x-y plane or turning with depth) is written with the same mapping: its point
 3D positions, its current row by row. The importer turns the vertical plane through the
 ends into the x-y plane, so export then import gives back the line and the current turned
 by the plane's heading.
+
+Waves (``[environment.waves]`` with line loads) are written as MoorDyn-C's WaveKin 7 and
+``wave_frequencies.txt`` beside the deck, the scene's components one per line
+(:mod:`riser.io.moordyn.waves`, which also says what MoorDyn-C does not represent).
 """
 
 from __future__ import annotations
@@ -36,6 +40,7 @@ from ...errors import UnsupportedSceneError
 from ...scene import FixedEnds, Scene
 from ...sections import segment_properties
 from .deck import OPTION_KEYS, Deck, DeckLine, DeckLineType, DeckPoint
+from .waves import wave_file_text
 
 #: the initial-condition settings written to a deck (MoorDyn-C's stationary solver):
 #: the time it may run [s], the residual acceleration it stops at [m/s2] and the interval
@@ -46,8 +51,9 @@ IC_OPTIONS = {"TmaxIC": 2000.0, "threshIC": 1.0e-4, "dtIC": 1.0}
 @dataclass
 class ExportedDeck:
     """The deck text, the current profile's text (None without a current), the notes
-    written into the deck, and for each MoorDyn line the scene segments it holds and its
-    arc length [s0, s1] [m] from the scene's bottom end."""
+    written into the deck, for each MoorDyn line the scene segments it holds and its arc
+    length [s0, s1] [m] from the scene's bottom end, and the text of wave_frequencies.txt
+    (None without waves in the deck)."""
 
     text: str
     current_profile: str | None
@@ -55,6 +61,7 @@ class ExportedDeck:
     deck: Deck
     line_segments: list[list[int]] = field(default_factory=list)
     line_span: list[tuple[float, float]] = field(default_factory=list)
+    wave_frequencies: str | None = None
 
 
 def _check(scene: Scene) -> None:
@@ -92,7 +99,8 @@ def _section(scene: Scene, props, seg) -> tuple:
 def export_scene(scene: Scene, *, segment_length: float | None = None,
                  joints: list[tuple[float, float, float]] | None = None,
                  hang_off: str = "Fixed", damping: float = 0.8,
-                 ic: dict | None = None, notes: tuple[str, ...] = ()) -> ExportedDeck:
+                 ic: dict | None = None, notes: tuple[str, ...] = (),
+                 waves: bool = True) -> ExportedDeck:
     """The MoorDyn deck of a fixed-ends ``scene``.
 
     segment_length : MoorDyn segment length [m] (default: the scene's VFIFE element
@@ -104,6 +112,8 @@ def export_scene(scene: Scene, *, segment_length: float | None = None,
         per segment; MoorDyn's damping, not the scene's, which has none in statics).
     ic : overrides of :data:`IC_OPTIONS`.
     notes : lines put first among the deck's comments (e.g. how the scene was converted).
+    waves : write the scene's waves (WaveKin 7 and wave_frequencies.txt,
+        :mod:`riser.io.moordyn.waves`); False: still water (MoorDyn's statics).
     """
     _check(scene)
     props = segment_properties(scene)
@@ -169,18 +179,48 @@ def export_scene(scene: Scene, *, segment_length: float | None = None,
         deck.lines.append(DeckLine(k + 1, names[sec], str(k + 1), str(k + 2), length, n, "-"))
         spans.append((s_edges[k], s_edges[k + 1]))
     opts = _options(scene, deck, groups[0][0], depth, notes, ic)
+    sea = _sea(scene, waves, opts, notes)
     deck.options = {k: (v, 0) for k, v in opts.items()}
     deck.outputs = ["AnchTen1", f"FairTen{len(groups)}"]
     profile = _current_profile(scene, depth) if scene.current is not None else None
-    if scene.dynamics is not None:
-        notes.append("The scene's [dynamics] (top motion, duration) is not exported: "
-                     "statics and the current only.")
+    if scene.dynamics is not None or scene.vessel is not None:
+        notes.append("The scene's [dynamics] and [vessel] (top motion, RAOs, duration) are "
+                     "not exported: a deck holds no motion of a coupled point (the MoorDyn "
+                     "peer prescribes it).")
     if any(lt.compression for lt in scene.line_types.values()):
         notes.append("MoorDyn's segments carry no compression (slack at zero strain); the "
                      "scene's pipe does: the two differ wherever the effective tension is "
                      "negative.")
     text = format_deck(deck, comments=notes, option_notes=_OPTION_NOTES)
-    return ExportedDeck(text, profile, notes, deck, [idx for _, idx in groups], spans)
+    return ExportedDeck(text, profile, notes, deck, [idx for _, idx in groups], spans, sea)
+
+
+def _sea(scene: Scene, waves: bool, opts: dict, notes: list[str]) -> str | None:
+    """WaveKin 7 and the text of wave_frequencies.txt of the scene's waves, or None
+    (none, still water asked, or waves that move the vessel only)."""
+    w = scene.waves
+    if w is None:
+        return None
+    if not waves:
+        notes.append("The scene's waves are not in this deck: still water (MoorDyn's "
+                     "statics, and the current's settling, run without them).")
+        return None
+    if not w.line_loads:
+        notes.append("The scene's waves move the vessel only ([environment.waves] "
+                     "line_loads = false): no WaveKin, the line in still water.")
+        return None
+    text, wave_notes = wave_file_text(scene)
+    opts["wavekin"] = "7"
+    notes.extend(wave_notes)
+    if w.ramp > 0.0 and scene.current is None:
+        opts["wavekin_rampt"] = repr(float(w.ramp))
+        notes.append(f"waveKin_rampT = {w.ramp:g} s: MoorDyn-C ramps the water kinematics "
+                     "linearly over it, the scene by a half cosine (the same after it).")
+    elif w.ramp > 0.0:
+        notes.append(f"The scene's ramp ({w.ramp:g} s) is not written: MoorDyn-C's "
+                     "waveKin_rampT would ramp the current with the waves (measured on "
+                     "2.7.2), so MoorDyn's waves start at full height at t = 0.")
+    return text
 
 
 _OPTION_NOTES = {
@@ -190,7 +230,9 @@ _OPTION_NOTES = {
     "frictioncoefficient": "- seabed friction coefficient",
     "currents": "- 1: steady current from current_profile.txt in this folder",
     "tmaxic": "- max time of the IC generation (s)",
-    "threshic": "- IC convergence threshold (m/s^2)", "dtic": "- IC check interval (s)"}
+    "threshic": "- IC convergence threshold (m/s^2)", "dtic": "- IC check interval (s)",
+    "wavekin": "- 7: summed wave components from wave_frequencies.txt in this folder",
+    "wavekin_rampt": "- linear ramp of the water kinematics (s)"}
 
 
 def _options(scene: Scene, deck: Deck, sec0: tuple, depth: float, notes: list[str],

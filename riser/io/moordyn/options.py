@@ -10,10 +10,11 @@ the last row of a name and its aliases wins; any other name is skipped with the 
 ``WtrDpth`` becomes the depth of the deepest point ("Water depth set to point N z
 position"). Measured on moordyn 2.7.2 (the weight per metre of a line with each option).
 
-Each option is honoured, refused (one line naming the deck line and the feature), or read
-and not carried with a note (MoorDyn's numerics, initial-condition solver and output,
-which the scene's methods do not share); names MoorDyn-C does not read are skipped as it
-skips them, with a note.
+``WaveKin`` 7 (summed wave components, :mod:`riser.io.moordyn.waves`) is honoured with its
+``waveKin_rampT``; any other value but 0 is refused. Each option is honoured, refused (one
+line naming the deck line and the feature), or read and not carried with a note
+(MoorDyn's numerics, initial-condition solver and output, which the scene's methods do
+not share); names MoorDyn-C does not read are skipped as it skips them, with a note.
 """
 
 from __future__ import annotations
@@ -29,7 +30,7 @@ from .tokens import CANONICAL, TEXT_OPTIONS, DeckError, comma_message, is_comma_
 #: constructor; WtrDpth 0 is then lowered to the deepest point)
 DEFAULTS = {"g": 9.80665, "rho": 1025.0, "WtrDpth": 0.0, "kBot": 3.0e6, "cBot": 3.0e5,
             "FrictionCoefficient": 0.0, "FricDamp": 200.0, "StatDynFricScale": 1.0,
-            "WaveKin": 0.0, "Currents": 0.0}
+            "WaveKin": 0.0, "Currents": 0.0, "waveKin_rampT": 0.0}
 SOURCE = "MoorDyn-C 2.7, source/MoorDyn2.cpp"
 #: read and not carried: MoorDyn's time stepping, initial-condition solver and output
 NUMERICS = ("writeLog", "dtM", "CFL", "tScheme", "dtIC", "TmaxIC", "CdScaleIC", "threshIC",
@@ -71,6 +72,10 @@ class Options:
     currents: int
     currents_line: int
     notes: list[str] = field(default_factory=list)
+    wavekin: int = 0
+    wavekin_line: int = 0
+    wave_ramp: float | None = None
+    wave_ramp_line: int = 0
 
     def given(self, what: str) -> str:
         """'(deck line N)' or "(MoorDyn-C's default)" for g, rho, kbot, cbot."""
@@ -99,12 +104,21 @@ def read_options(deck: Deck) -> Options:
     hold, naming the deck line."""
     src = deck.source
     notes: list[str] = []
-    _check_rows(deck, notes)
-    for key, what in (("WaveKin", "waves (wave kinematics)"),):
-        v, no = _value(deck, key)
-        if v != 0.0:
-            raise DeckError(src, no, f"option {key} = {v:g}: {what} cannot be imported: a "
-                            "scene has a still surface, a flat seabed and a steady current")
+    got = deck.option_entry("WaveKin")
+    seven = got is not None and is_number(got[0]) and float(got[0]) == 7.0
+    _check_rows(deck, notes, carried=("waveKin_rampT",) if seven else ())
+    wavekin, wavekin_line = _value(deck, "WaveKin")
+    if wavekin not in (0.0, 7.0):
+        raise DeckError(src, wavekin_line, f"option WaveKin = {wavekin:g}: waves other than "
+                        "MoorDyn-C's summed components (WaveKin 7, wave_frequencies.txt) "
+                        "cannot be imported: a scene's waves are Airy components, not "
+                        "kinematics given through the API (1) or on a grid (2, 3)")
+    ramp, ramp_line = None, 0
+    if wavekin and deck.option_entry("waveKin_rampT") is not None:
+        ramp, ramp_line = _value(deck, "waveKin_rampT")
+        if ramp < 0.0:
+            raise DeckError(src, ramp_line, f"option waveKin_rampT = {ramp:g}: must be >= 0 "
+                            "s")
     sea = deck.option_entry("SeafloorFile")
     if sea is not None:
         raise DeckError(src, sea[1], f"option SeafloorFile ({sea[0]}): a seafloor file "
@@ -139,12 +153,13 @@ def read_options(deck: Deck) -> Options:
         f"(MoorDyn-C's default, {SOURCE}: the deck gives neither g nor gravity)."))
     return Options(g, g_line, rho, rho_line, depth if depth_line else None, depth_line,
                    kbot, kbot_line, cbot, cbot_line, friction, int(currents), currents_line,
-                   notes)
+                   notes, int(wavekin), wavekin_line, ramp, ramp_line)
 
 
-def _check_rows(deck: Deck, notes: list[str]) -> None:
+def _check_rows(deck: Deck, notes: list[str], carried: tuple[str, ...] = ()) -> None:
     """Notes on the rows as MoorDyn-C reads them: rows without a name, repeated options,
-    names it does not read, options read and not carried; a comma number is refused."""
+    names it does not read, options read and not carried (but those ``carried``, with
+    waves); a comma number is refused."""
     src = deck.source
     seen: dict[str, list[int]] = {}
     ignored: list[str] = []
@@ -171,7 +186,7 @@ def _check_rows(deck: Deck, notes: list[str]) -> None:
         if k not in TEXT_OPTIONS and is_comma_number(value):
             raise DeckError(src, no, comma_message(f"option {name}", value))
         seen.setdefault(canon, []).append(no)
-        if canon in NUMERICS:
+        if canon in NUMERICS and canon not in carried:
             ignored.append(f"{name} (line {no})")
     for canon, lines in seen.items():
         if len(lines) > 1:

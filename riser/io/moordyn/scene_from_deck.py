@@ -4,7 +4,8 @@ What a scene holds: one line from a bottom end to a hang-off, both fixed, made o
 segments. So the deck must describe one chain of lines joined end to end by free points
 (MoorDyn's joints, which are hinges: see docs/moordyn.md), between two fixed or coupled points
 at their deck positions. Everything else is refused before anything is written, one line
-naming the deck line: bodies, rods, failures, external loads, waves, a seafloor file, a
+naming the deck line: bodies, rods, failures, external loads, waves other than summed
+components (WaveKin 7: :mod:`riser.io.moordyn.waves`), a seafloor file, a
 third fixed end, a point with a mass, a volume or drag (a clump weight or a float), a
 coupled point with no position, a branch or a loop, a line type that a used line cannot
 have (no bending stiffness, a nonlinear EA), a number written with a comma.
@@ -48,6 +49,7 @@ from ..toml_text import dumps
 from .deck import Deck, DeckPoint, read_deck, read_text
 from .options import Options, read_options
 from .tokens import DeckError, comma_message, is_comma_number
+from .waves import WAVE_FILE, read_components, waves_table
 
 
 def import_deck(path: str | Path, name: str | None = None) -> tuple[str, Scene, list[str]]:
@@ -59,16 +61,19 @@ def import_deck(path: str | Path, name: str | None = None) -> tuple[str, Scene, 
     deck = read_deck(path)
     name = _scene_name(name or path.stem)
     data, notes, where, env_comments = scene_dict(deck, name,
-                                                  path.parent / "current_profile.txt")
+                                                  path.parent / "current_profile.txt",
+                                                  path.parent / WAVE_FILE)
     header = [f"Imported from the MoorDyn deck {path.name} by riser-verify import-moordyn.",
               *notes]
     text = dumps(data, header=[_printable(h) for h in header],
                  comments={"environment": [_printable(c) for c in env_comments]})
     try:
         scene = scene_from_dict(data, f"{path.name} (imported)")
-    except SceneError as exc:   # a value outside a scene's range: name the deck line
-        line = next((no for prefix, no in where.items() if exc.key.startswith(prefix)), 0)
-        raise DeckError(str(path), line, f"{exc.key}: {exc.message}") from None
+    except SceneError as exc:   # a value outside a scene's range: name the deck line (or
+        hits = [p for p in where if exc.key == p or exc.key.startswith((f"{p}.", f"{p}["))]
+        got = where[max(hits, key=len)] if hits else 0      # the wave file's), the longest
+        src, line = got if isinstance(got, tuple) else (str(path), got)     # key matching
+        raise DeckError(src, line, f"{exc.key}: {exc.message}") from None
     return text, scene, notes
 
 
@@ -197,11 +202,11 @@ def _depth(deck: Deck, opts: Options, notes: list[str]) -> tuple[float, int, str
     return depth, line, origin
 
 
-def scene_dict(deck: Deck, name: str, current_file: Path | None
-               ) -> tuple[dict, list[str], dict[str, int], list[str]]:
-    """The scene structure of a deck, the notes, key prefix -> deck line (for errors),
-    and the comment lines of its [environment] (where g, the density and the depth came
-    from)."""
+def scene_dict(deck: Deck, name: str, current_file: Path | None,
+               wave_file: Path | None = None) -> tuple[dict, list[str], dict, list[str]]:
+    """The scene structure of a deck, the notes, key prefix -> deck line (or (file, line)
+    of the wave file, for errors), and the comment lines of its [environment] (where g,
+    the density and the depth came from)."""
     _refuse_sections(deck)
     opts = read_options(deck)
     notes = [*deck.notes, *opts.notes]
@@ -235,6 +240,13 @@ def scene_dict(deck: Deck, name: str, current_file: Path | None
     if current:
         data["environment"]["current"] = current
         where["environment.current"] = opts.currents_line
+    if opts.wavekin == 7:           # waves (riser.io.moordyn.waves); the origin: MoorDyn's 0
+        rows, wfile = read_components(wave_file or Path(deck.source).parent / WAVE_FILE,
+                                      deck, opts.wavekin_line, notes)
+        where["environment.waves"] = opts.wavekin_line
+        data["environment"]["waves"] = waves_table(
+            rows, wfile, (bottom.x, bottom.y), ex, opts.wave_ramp, opts.wave_ramp_line,
+            bool(current), notes, where)
     data["line_types"] = {}
     for tname in used_types:
         lt = deck.line_types[tname]

@@ -1,7 +1,8 @@
 """MoorDyn-C v2 as a peer (the optional extra ``[moordyn]``, imported only inside the
 functions that run it): :mod:`.deck` (a scene's deck, joints started from the BVP; the
 segment length checked), :mod:`.run` (MoorDyn's statics of that deck, the current by
-time-stepping, its state as a profile), :mod:`.column` (its column in
+time-stepping, its state as a profile), :mod:`.waves` (a run in the scene's sea: the same
+wave components, the hang-off moved by the vessel), :mod:`.column` (its column in
 ``compare --peer moordyn``: rows, its own tolerances, report section, files),
 :mod:`.bench` (``bench --peer moordyn``) and :mod:`.commands` (``import-moordyn``,
 ``export-moordyn``)."""
@@ -12,6 +13,7 @@ from verification.peers import Peer
 
 #: the files of its column under a comparison's folder (cleared before a run)
 FILES = tuple(f"moordyn/{n}" for n in ("deck.dat", "deck.out", "current_profile.txt",
+                                       "wave_frequencies.txt", "still.state",
                                        "moordyn.log", "agreement.csv", "profile.csv",
                                        "dynamic_agreement.csv"))
 

@@ -48,7 +48,7 @@ def cmd_export_moordyn(args) -> int:
     lines = ", ".join(f"{ln.length:g} m x {ln.segments}" for ln in ex.deck.lines)
     print(f"{scene.name}: {len(ex.deck.lines)} MoorDyn line(s) ({lines} segments), free "
           f"points from {files.joints_from}; wrote {files.deck_path}"
-          + (f" and {files.profile_path}" if files.profile_path else ""))
+          + "".join(f" and {p}" for p in (files.profile_path, files.waves_path) if p))
     return 0
 
 
@@ -56,14 +56,14 @@ def add_parsers(sub) -> None:
     """The import-moordyn and export-moordyn subcommands."""
     s = sub.add_parser("import-moordyn", help="a MoorDyn v2 deck -> a scene file")
     s.add_argument("deck", help="MoorDyn v2 input file (current_profile.txt beside it if "
-                   "Currents = 1)")
+                   "Currents = 1, wave_frequencies.txt if WaveKin = 7)")
     s.add_argument("--out", help="scene file to write, any name in any folder (default: "
                    "beside the deck, its name with .toml); the scene is named after the deck")
     s.set_defaults(func=cmd_import_moordyn)
     s = sub.add_parser("export-moordyn", help="a scene -> a MoorDyn v2 deck")
     s.add_argument("scene", help="built-in scene name or path to a .toml scene file")
     s.add_argument("--out", help="deck to write (default out/SCENE/moordyn/SCENE.dat); "
-                   "current_profile.txt goes beside it")
+                   "current_profile.txt and wave_frequencies.txt go beside it")
     s.add_argument("--segment-length", type=float,
                    help="MoorDyn segment length [m] (default: the scene's VFIFE element length)")
     s.set_defaults(func=cmd_export_moordyn)

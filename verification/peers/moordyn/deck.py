@@ -11,6 +11,7 @@ import numpy as np
 
 from riser.errors import SceneError
 from riser.io.moordyn.deck_from_scene import ExportedDeck, export_scene
+from riser.io.moordyn.waves import WAVE_FILE
 from riser.scene import FixedEnds, Scene
 from verification import pipeline
 
@@ -31,9 +32,9 @@ def check_segment_length(value: float | None, option: str, scene) -> None:
 @dataclass
 class DeckFiles:
     """An exported deck: the fixed-ends scene it describes, the export, the files written
-    (the deck, and current_profile.txt beside it with a current), the arc-length shift
-    [m] from the fixed-ends scene back to the original scene's s (0 for fixed ends), and
-    where the joints' initial positions came from."""
+    (the deck, current_profile.txt beside it with a current, wave_frequencies.txt with
+    waves), the arc-length shift [m] from the fixed-ends scene back to the original
+    scene's s (0 for fixed ends), and where the joints' initial positions came from."""
 
     scene: Scene
     export: ExportedDeck
@@ -41,6 +42,7 @@ class DeckFiles:
     profile_path: Path | None
     s_shift: float
     joints_from: str
+    waves_path: Path | None = None
 
 
 def fixed_scene(scene: Scene) -> tuple[Scene, float, str]:
@@ -76,18 +78,23 @@ def joint_guess(scene: Scene, spans, profile=None) -> tuple[list | None, str]:
 
 
 def export(scene: Scene, path: Path | None, *, segment_length: float | None = None,
-           profile=None, hang_off: str = "Fixed", ic: dict | None = None) -> DeckFiles:
+           profile=None, hang_off: str = "Fixed", ic: dict | None = None,
+           waves: bool = True, joints=None) -> DeckFiles:
     """Export ``scene`` (any end form) and, when ``path`` is given, write the deck there and
-    current_profile.txt beside it (MoorDyn reads it from the deck's folder)."""
+    current_profile.txt and wave_frequencies.txt beside it (MoorDyn reads them from the
+    deck's folder). ``waves``: False writes still water (MoorDyn's statics).
+    ``joints``: (positions, where they came from) of the free points, instead of a solve
+    (the same deck with and without its waves)."""
     fixed, shift, note = fixed_scene(scene)
-    first = export_scene(fixed, segment_length=segment_length, hang_off=hang_off, ic=ic)
-    joints, how = joint_guess(fixed, first.line_span, profile)
+    first = export_scene(fixed, segment_length=segment_length, hang_off=hang_off, ic=ic,
+                         waves=waves)
+    joints, how = joints or joint_guess(fixed, first.line_span, profile)
     notes = [f"Converted from the '{scene.ends.kind}' form: {note}"] if note else []
     if len(first.line_span) > 1:
         notes.append(f"The free points start from {how}.")
     ex = export_scene(fixed, segment_length=segment_length, joints=joints, hang_off=hang_off,
-                      ic=ic, notes=tuple(notes))
-    deck_path = profile_path = None
+                      ic=ic, notes=tuple(notes), waves=waves)
+    deck_path = profile_path = waves_path = None
     if path is not None:
         path = Path(path)
         path.parent.mkdir(parents=True, exist_ok=True)
@@ -96,4 +103,7 @@ def export(scene: Scene, path: Path | None, *, segment_length: float | None = No
         if ex.current_profile is not None:
             profile_path = path.parent / "current_profile.txt"
             profile_path.write_text(ex.current_profile)
-    return DeckFiles(fixed, ex, deck_path, profile_path, shift, how)
+        if ex.wave_frequencies is not None:
+            waves_path = path.parent / WAVE_FILE
+            waves_path.write_text(ex.wave_frequencies)
+    return DeckFiles(fixed, ex, deck_path, profile_path, shift, how, waves_path)

@@ -1,5 +1,7 @@
 """MoorDyn's third opinion on a dynamic comparison (``compare SCENE --dynamics --peer
-moordyn``): the same ramped harmonic motion of the hang-off, at the sweep's smallest
+moordyn``): the same ramped harmonic motion of the hang-off, or in a comparison driven by
+a regular wave the same sea (:mod:`.waves`: the scene's components, the vessel moving the
+hang-off), at the sweep's smallest
 amplitude, driven through MoorDyn's Coupled point (:mod:`.harmonic`), its first harmonic
 against the frequency domain's and the VFIFE's. Outside the verdict, with its own
 tolerance (:data:`TOLERANCE`).
@@ -47,8 +49,15 @@ def dynamic(dc, out, progress=None) -> tuple[str, list[str]]:
                           r0.vf.get("ramp_periods", RAMP_PERIODS))
     folder = Path(out) / "moordyn"
     folder.mkdir(parents=True, exist_ok=True)
-    run = run_harmonic(scene, folder, segment_length=SEGMENT_LENGTH,
-                       profile=dc.static.profile)
+    sea = scene.waves is not None and scene.dynamics.top_motion is None
+    if sea:      # a wave-driven comparison: the same components (WaveKin 7), the vessel
+        from .waves import run_waves                        # moving the hang-off
+        run = run_waves(scene, folder, segment_length=SEGMENT_LENGTH,
+                        profile=dc.static.profile,
+                        sample=scene.dynamics.output_interval)
+    else:
+        run = run_harmonic(scene, folder, segment_length=SEGMENT_LENGTH,
+                           profile=dc.static.profile)
     if not run.get("stable", True):
         why = run.get("message", "unstable")
         return (f"\n## MoorDyn (third opinion, not in the verdict)\n\nMoorDyn stopped: "
@@ -86,8 +95,16 @@ def dynamic(dc, out, progress=None) -> tuple[str, list[str]]:
              f"the FD ({'within' if r['within'] else 'OUTSIDE'} its {r['tolerance']:g})"
              for r in rows]
     return ("\n## MoorDyn (third opinion, not in the verdict)\n\n"
-            f"MoorDyn-C, {SEGMENT_LENGTH:g} m segments, the same ramped motion at "
-            f"{r0.amplitude:g} m, the hang-off given at every MoorDyn step; its first "
+            f"MoorDyn-C, {SEGMENT_LENGTH:g} m segments, "
+            + (f"the same sea (the scene's components summed by its WaveKin 7, wave "
+               f"amplitude {r0.amplitude:g} m; {run['ramp']}; its elevation within "
+               f"{run['sea_elevation_difference']:.1g} m of the scene's"
+               + ("" if scene.waves.stretching == "wheeler" else
+                  f"; MoorDyn stretches by Wheeler, the scene's '{scene.waves.stretching}' "
+                  "stretching is not represented")
+               + "), the hang-off's motion given at every MoorDyn step" if sea else
+               f"the same ramped motion at {r0.amplitude:g} m, the hang-off given at every "
+               "MoorDyn step") + "; its first "
             "harmonic over the same window (`moordyn/dynamic_agreement.csv`; tension "
             "along s at the interior nodes; its tolerance "
             f"{TOLERANCE:.0%}: {TOLERANCE_REASON}). Wall time "

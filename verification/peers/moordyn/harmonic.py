@@ -27,6 +27,9 @@ How it runs:
   d(t_k)) / dt e, the central difference of d at the step's midpoint: the path is the
   continuous piecewise-linear interpolant of d(t) at the steps (the analytic d'(t_k)
   would leave a jump of ~ d'' dt^2 / 2 at every step).
+- **Waves**: a scene with ``[environment.waves]`` loading the line runs in the same sea
+  (MoorDyn's WaveKin 7 of its components, :mod:`.waves`: the deck with the waves from
+  the start, or, with a current, the state settled in still water loaded into it).
 - **Axes**: the deck places the line in MoorDyn's X-Z plane
   (:func:`riser.io.moordyn.deck_from_scene.export_scene`): MoorDyn (X, Y, Z) = (x, -z,
   y - WtrDpth). So the scene's axis 'x' (horizontal, anchor towards hang-off) is
@@ -64,8 +67,9 @@ from riser.scene import Scene
 from verification.comparison.harmonics import fit
 from vfife.dynamics import top_displacement
 
-from .run import (IC_BUDGET, RESIDUAL_TOL, SETTLE_TIME, SPEED_TOL, STEP_FRACTION, _profile,
-                  _residual, _to_log, close, require, start)
+from .run import (SETTLE_TIME, SPEED_TOL, STEP_FRACTION, _profile, _to_log, close,
+                  coupled_statics as _statics, require)
+from .waves import has_sea, to_sea
 
 #: samples per period of the motion (as the VFIFE's envelope sampling)
 SAMPLES_PER_PERIOD = 40
@@ -74,28 +78,6 @@ SAMPLES_PER_PERIOD = 40
 PSEUDO_TIME = 250.0
 #: scene axis -> (MoorDyn axis index, sign): MoorDyn (X, Y, Z) = (x, -z, y - WtrDpth)
 MOORDYN_AXIS = {"x": (0, 1.0), "y": (2, 1.0), "z": (1, -1.0)}
-
-
-def _statics(scene, folder, segment_length, profile, pseudo, log):
-    """MoorDyn's statics with a Coupled hang-off, the pseudo-time doubled as in
-    :func:`.run.run`: (system, lines, files, residual, pseudo-time, wall time in all)."""
-    import moordyn
-    spent = 0.0
-    while True:
-        system, lines, files, wall, code = start(scene, folder, segment_length=segment_length,
-                                                 pseudo_time=pseudo, profile=profile,
-                                                 hang_off="Coupled")
-        spent += wall
-        if code not in (0, None):
-            close(system, folder)
-            raise RuntimeError(f"MoorDyn's Init returned error {code}")
-        res = _residual(moordyn, lines, files.scene, files)
-        log(f"moordyn: statics {pseudo:g} s of pseudo-time, {wall:.1f} s, residual "
-            f"{100 * res:.2g} % of a node's weight")
-        if res <= RESIDUAL_TOL or spent + 2.0 * wall > IC_BUDGET:
-            return system, lines, files, res, pseudo, spent
-        close(system, folder)
-        pseudo *= 2.0
 
 
 def _max_speed(moordyn, lines) -> float:
@@ -148,9 +130,11 @@ def run_harmonic(scene: Scene, folder, *, segment_length: float = 10.0, profile=
            "sample_interval": sample, "stable": True, "message": "completed",
            "statistics_from": dyn.statistics_from}
     log_path = folder / "moordyn.log"
+    sea = has_sea(scene)          # the scene's waves too: MoorDyn sums the same components
     try:
         system, lines, files, res, pseudo, static_wall = _statics(
-            scene, folder, segment_length, profile, pseudo_time, say)
+            scene, folder, segment_length, profile, pseudo_time, say,
+            waves=sea and scene.current is None)
     except RuntimeError as exc:
         out.update(stable=False, message=f"MoorDyn's statics failed ({exc}; see {log_path})")
         return _arrays(out, scene)
@@ -194,7 +178,11 @@ def run_harmonic(scene: Scene, folder, *, segment_length: float = 10.0, profile=
                 clock = settle = clock + 1.0
                 if _max_speed(moordyn, lines) < SPEED_TOL:
                     break
-            take(0.0)
+            take(0.0)           # (before a switch: LoadState refreshes the outputs later)
+            if sea and files.scene.current is not None:    # settled in still water: the
+                system, lines, files = to_sea(system, files, scene, folder, segment_length)
+                cmoordyn.set_dt(system, dt)                 # same state, with the waves
+                end = lines[-1]
             for j in range(n_samples):
                 tj = (j * per_sample + np.arange(per_sample + 1)) * dt
                 d = top_displacement(scene, tj)

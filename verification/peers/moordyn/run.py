@@ -12,6 +12,9 @@ How MoorDyn is run (MoorDyn-C 2.7, measured in issue 17):
   weight, seabed and drag) over that node's load q l, q its submerged weight |w| or, when
   larger, its normal drag in the largest current speed (a light line held out by the
   current).
+- **Waves** (``[environment.waves]``) are not in the static deck: MoorDyn's statics are
+  still water, as the scene's (the deck says so); a dynamic run writes them
+  (:mod:`.waves`).
 - **A current** is not applied by MoorDyn's static solver (MoorDyn-C 2.7 runs it without
   water kinematics): the state is then time-stepped with the current on (RK2, at 0.3 of
   MoorDyn's CFL-0.5 step: that step is unstable in dynamics on a riser with bending) until
@@ -126,13 +129,16 @@ def _to_log(path: Path):
 
 
 def start(scene: Scene, folder: Path, *, segment_length: float, pseudo_time: float,
-          profile=None, hang_off: str = "Fixed"):
+          profile=None, hang_off: str = "Fixed", waves: bool = False, joints=None):
     """Export ``scene`` to ``folder``/deck.dat, then MoorDyn's Create and Init (its static
     solver for ``pseudo_time`` s; a Coupled hang-off starts at its deck position):
-    (system, lines, deck files, Init's wall time [s], Init's return code)."""
+    (system, lines, deck files, Init's wall time [s], Init's return code). ``waves``: the
+    deck holds the scene's waves (WaveKin 7; MoorDyn-C's static solver runs without them,
+    its clock starts at 0 after Init); still water otherwise. ``joints``: the free points'
+    (positions, origin) instead of a solve (:func:`.deck.export`)."""
     import moordyn
     files = export(scene, folder / "deck.dat", segment_length=segment_length,
-                   profile=profile, hang_off=hang_off,
+                   profile=profile, hang_off=hang_off, waves=waves, joints=joints,
                    ic={"TmaxIC": pseudo_time, "threshIC": 1e-12, "dtIC": 10.0})
     top = files.export.deck.points[-1]
     x0 = [top.x, top.y, top.z] if hang_off == "Coupled" else []
@@ -144,6 +150,29 @@ def start(scene: Scene, folder: Path, *, segment_length: float, pseudo_time: flo
         wall = time.perf_counter() - t0
     lines = [moordyn.GetLine(system, k + 1) for k in range(len(files.export.deck.lines))]
     return system, lines, files, wall, code
+
+
+def coupled_statics(scene, folder, segment_length, profile, pseudo, log, waves: bool = False):
+    """MoorDyn's statics with a Coupled hang-off, the pseudo-time doubled as in
+    :func:`.run.run`: (system, lines, files, residual, pseudo-time, wall time in all).
+    ``waves``: the deck holds the scene's waves (its statics are still water)."""
+    import moordyn
+    spent = 0.0
+    while True:
+        system, lines, files, wall, code = start(scene, folder, segment_length=segment_length,
+                                                 pseudo_time=pseudo, profile=profile,
+                                                 hang_off="Coupled", waves=waves)
+        spent += wall
+        if code not in (0, None):
+            close(system, folder)
+            raise RuntimeError(f"MoorDyn's Init returned error {code}")
+        res = _residual(moordyn, lines, files.scene, files)
+        log(f"moordyn: statics {pseudo:g} s of pseudo-time, {wall:.1f} s, residual "
+            f"{100 * res:.2g} % of a node's weight")
+        if res <= RESIDUAL_TOL or spent + 2.0 * wall > IC_BUDGET:
+            return system, lines, files, res, pseudo, spent
+        close(system, folder)
+        pseudo *= 2.0
 
 
 def close(system, folder: Path) -> None:
