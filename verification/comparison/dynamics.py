@@ -216,12 +216,17 @@ def dynamic_scene(scene: Scene, axis: str, amplitude: float, period: float,
                    save_states=True)
     if axis == WAVE:
         scene = wave_scene(scene, amplitude, ramp * period)
+    return scene.replace(dynamics=new, **tightened_statics(scene))
+
+
+def tightened_statics(scene: Scene) -> dict:
+    """The VFIFE's static tolerances :data:`STATIC_TIGHTENING` times the scene's, as
+    ``Scene.replace`` key paths (see the module docstring)."""
     vf, f = scene.vfife, STATIC_TIGHTENING
-    return scene.replace(dynamics=new, **{
-        "vfife.static_tolerance": vf.static_tolerance * f,
-        "vfife.expert.tension_tolerance": vf.tension_tolerance * f,
-        "vfife.expert.moment_tolerance": vf.moment_tolerance * f,
-        "vfife.expert.creep_tolerance": vf.creep_tolerance * f})
+    return {"vfife.static_tolerance": vf.static_tolerance * f,
+            "vfife.expert.tension_tolerance": vf.tension_tolerance * f,
+            "vfife.expert.moment_tolerance": vf.moment_tolerance * f,
+            "vfife.expert.creep_tolerance": vf.creep_tolerance * f}
 
 
 def compare_dynamics(scene: Scene, *, amplitudes=None, element_length: float | None = None,

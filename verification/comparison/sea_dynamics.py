@@ -3,9 +3,9 @@
 stochastically) against the statistics of the VFIFE's time domain in the same sea (the
 same components: the scene's seeded realisation).
 
-The VFIFE run: the waves' half-cosine ramp (at least :data:`RAMP_PEAK_PERIODS` peak
-periods and :data:`.dynamics.RAMP_FUNDAMENTALS` times the line's longest natural period,
-as the harmonic comparison's), :data:`SETTLE_PEAK_PERIODS` peak periods for the start-up
+The VFIFE run: the waves' half-cosine ramp (:func:`.dynamics.ramp_periods` of the peak
+period: at least 3 peak periods and twice the line's longest natural period, as the
+harmonic comparison's), :data:`SETTLE_PEAK_PERIODS` peak periods for the start-up
 transient to decay, then a record of one repeat period of the sea, 2 pi / d omega: over it
 the components are orthogonal (their frequencies are multiples of d omega,
 :mod:`riser.waves`), so the record's variance of a linear response is exactly the sum of
@@ -38,12 +38,10 @@ from riser.errors import SceneError, SolveFailed, UnsupportedSceneError
 from riser.scene import Scene
 from verification.pipeline import vfife_equivalent
 
-from .dynamics import RAMP_FUNDAMENTALS, STATIC_TIGHTENING
+from .dynamics import RAMP_FUNDAMENTALS, RAMP_PERIODS, ramp_periods, tightened_statics
 
 #: the issue's bound on the hang-off tension's standard deviation (relative)
 TOLERANCE = 0.05
-#: the ramp lasts at least this many peak periods
-RAMP_PEAK_PERIODS = 3
 #: peak periods for the transient to decay after the ramp
 SETTLE_PEAK_PERIODS = 6
 #: time-series samples per shortest component period
@@ -108,12 +106,8 @@ def sea_run_scene(scene: Scene, ramp: float, settle: float, record: float) -> Sc
                    output_interval=shortest / SAMPLES_PER_SHORTEST,
                    damping=dyn.damping if dyn is not None else 0.0,
                    statistics_start=ramp + settle)
-    vf, f = scene.vfife, STATIC_TIGHTENING
-    return scene.replace(dynamics=new, waves=scene.waves.replace(ramp_time=ramp), **{
-        "vfife.static_tolerance": vf.static_tolerance * f,
-        "vfife.expert.tension_tolerance": vf.tension_tolerance * f,
-        "vfife.expert.moment_tolerance": vf.moment_tolerance * f,
-        "vfife.expert.creep_tolerance": vf.creep_tolerance * f})
+    return scene.replace(dynamics=new, waves=scene.waves.replace(ramp_time=ramp),
+                         **tightened_statics(scene))
 
 
 def compare_sea(scene: Scene, *, element_length: float | None = None, static=None,
@@ -139,16 +133,15 @@ def compare_sea(scene: Scene, *, element_length: float | None = None, static=Non
     if not fd.converged:
         raise SolveFailed("bvp", fd.status, f"frequency domain (sea): {fd.message}")
     tp = 2.0 * math.pi / matched.waves.spectrum.peak_omega
-    from bvp.modes import solve_modes
-    modes = solve_modes(matched, 1, static=static)
-    longest = max((m.period_s for m in modes.modes), default=0.0)
-    ramp = max(RAMP_PEAK_PERIODS * tp, RAMP_FUNDAMENTALS * longest)
+    periods, longest = ramp_periods(matched, tp, static)
+    ramp = periods * tp
     settle = SETTLE_PEAK_PERIODS * tp
     record = repeat_period(matched)
-    notes.append(f"VFIFE run: a ramp of {ramp:.4g} s (at least {RAMP_PEAK_PERIODS} peak "
-                 f"periods and {RAMP_FUNDAMENTALS:g} times the longest natural period, "
-                 f"{longest:.4g} s), {settle:.4g} s to settle, then one repeat period of the "
-                 f"sea, {record:.4g} s.")
+    notes.append(f"VFIFE run: a ramp of {periods} peak periods, {ramp:.4g} s (at least "
+                 f"{RAMP_PERIODS} and {RAMP_FUNDAMENTALS:g} times the longest natural period, "
+                 + (f"{longest:.4g} s" if longest else "unknown: the modal analysis failed")
+                 + f"), {settle:.4g} s to settle, then one repeat period of the sea, "
+                 f"{record:.4g} s.")
     vs = sea_run_scene(matched, ramp, settle, record)
     now(f"vfife: {vs.dynamics.duration:.0f} s in the sea")
     t0 = time.perf_counter()
