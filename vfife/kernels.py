@@ -432,7 +432,7 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
               b0, b1, b2, wload, mass, im, imd, jinv, jrot, kst, cseabed, mu, vfric,
               U, Uz, cdn, cdt, cdir, use_drag, qd0, qd1, qd2, use_dashpot, wair, iair, madd,
               sband, dband, ysurf, use_surface, ql0, ql1, ql2, use_flow, pl0, pl1, pl2,
-              use_dead, WV, cin, use_waves, dt, c, stats, R, RM):
+              use_dead, dt, c, stats, R, RM):
     """Fused node pass (3D): nodal force = f[i] - f[i-1] - weight (+ seabed, + drag,
     + dead load), moment = a[i] + b[i-1]; central-difference update of the translations
     of nodes 1..n-2 (added mass normal to the director: im = 1/(m + ma), imd = 1/m - im)
@@ -460,14 +460,6 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
     ql0..ql2 (n,): internal-flow forces of :func:`flow_pass` (read only when use_flow).
     pl0..pl2 (n,): a dead load of fixed direction [N] per node, added to the weight
     (read only when use_dead; see :class:`vfife.model.Model`).
-    Waves (when use_waves): WV (7, n) the wave kinematics at the nodes now
-    (:func:`wave_taylor`): the fluid velocity [m/s] (rows 0-2, added to the current's in
-    the drag), the fluid acceleration [m/s2] (rows 3-5) and the surface height y [m]
-    (row 6, the sea surface of this node instead of ysurf); the fluid inertia force
-    wet x (cin[0, i] a_n + cin[1, i] a_t), a_n and a_t the acceleration's parts normal
-    and tangential to the director, cin (2, n) = ((1 + C_a), 1) rho pi D^2 / 4 x
-    tributary length [kg] (the Froude-Krylov force of the whole acceleration, plus the
-    added mass normal to the axis; see :mod:`vfife.waves`).
     Returns (max squared free-node force [N2], max squared moment [N2 m2], 2 x KE [J]);
     the two maxima are 0 unless ``stats``."""
     n = x.shape[0]
@@ -494,8 +486,7 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
         wet = 1.0
         if use_surface:                   # immersed fraction of the node's segment
             band = max(dband[i], sband[i] * abs(dy[i]))
-            ys = WV[6, i] if use_waves else ysurf
-            wet = min(max((ys - y[i]) / band + 0.5, 0.0), 1.0)
+            wet = min(max((ysurf[i] - y[i]) / band + 0.5, 0.0), 1.0)
             wi = wair[i] + wet * (wi - wair[i])
             imi = 1.0 / (mass[i] + wet * madd[i])
             imdi = iair[i] - imi
@@ -521,10 +512,6 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
             rx = cu * cx - ux
             ry = cu * cy - uy
             rz = cu * cz + Uz[i] - uz
-            if use_waves:
-                rx += WV[0, i]
-                ry += WV[1, i]
-                rz += WV[2, i]
             rt = rx * ex + ry * ey + rz * ez
             rnx = rx - rt * ex
             rny = ry - rt * ey
@@ -534,16 +521,6 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
             gx += cn * rnx + ft * ex
             gy += cn * rny + ft * ey
             gz += cn * rnz + ft * ez
-        if use_waves:                     # Morison inertia on the normal acceleration
-            ax_ = WV[3, i]
-            ay_ = WV[4, i]
-            az_ = WV[5, i]
-            at = ax_ * ex + ay_ * ey + az_ * ez
-            ci = wet * cin[0, i]
-            ct = wet * cin[1, i] * at - ci * at
-            gx += ci * ax_ + ct * ex
-            gy += ci * ay_ + ct * ey
-            gz += ci * az_ + ct * ez
         if use_flow:
             gx += ql0[i]
             gy += ql1[i]
@@ -583,10 +560,10 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
 def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, jinv, jrot,
                  kst, cseabed, mu, vfric, U, cdn, cdt, cdir, use_drag, qd0, qd1,
                  use_dashpot, wair, iair, madd, sband, dband, ysurf, use_surface, ql0, ql1,
-                 use_flow, pl0, pl1, use_dead, WV, cin, use_waves, dt, c, stats, R, RM):
+                 use_flow, pl0, pl1, use_dead, dt, c, stats, R, RM):
     """Planar version of :func:`node_pass` (w (n,) rotation rate about z, a0, b0 (ne,)
     moments about z, cdir (2,) in plane, qd0, qd1 (ne,) dashpot forces, ql0, ql1 (n,)
-    flow forces, pl0, pl1 (n,) dead load [N]; WV rows 0, 1, 3, 4 and 6 of the waves)."""
+    flow forces, pl0, pl1 (n,) dead load [N])."""
     n = x.shape[0]
     c1 = 1.0 - 0.5 * c * dt
     c2 = 1.0 / (1.0 + 0.5 * c * dt)
@@ -618,8 +595,7 @@ def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, 
         wet = 1.0
         if use_surface:                       # see node_pass
             band = max(dband[i], sband[i] * abs(dy[i]))
-            ys = WV[6, i] if use_waves else ysurf
-            wet = min(max((ys - y[i]) / band + 0.5, 0.0), 1.0)
+            wet = min(max((ysurf[i] - y[i]) / band + 0.5, 0.0), 1.0)
             wi = wair[i] + wet * (wi - wair[i])
             imi = 1.0 / (mass[i] + wet * madd[i])
             imdi = iair[i] - imi
@@ -638,9 +614,6 @@ def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, 
             cu = U[i]
             rx = cu * cx - ux
             ry = cu * cy - uy
-            if use_waves:
-                rx += WV[0, i]
-                ry += WV[1, i]
             rt = rx * ex + ry * ey
             rnx = rx - rt * ex
             rny = ry - rt * ey
@@ -648,14 +621,6 @@ def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, 
             ft = wet * cdt[i] * abs(rt) * rt
             gx += cn * rnx + ft * ex
             gy += cn * rny + ft * ey
-        if use_waves:                         # see node_pass
-            ax_ = WV[3, i]
-            ay_ = WV[4, i]
-            at = ax_ * ex + ay_ * ey
-            ci = wet * cin[0, i]
-            ct = wet * cin[1, i] * at - ci * at
-            gx += ci * ax_ + ct * ex
-            gy += ci * ay_ + ct * ey
         if use_flow:
             gx += ql0[i]
             gy += ql1[i]
@@ -783,13 +748,58 @@ def wave_taylor(WT, tau, WV):
             WV[r, i] = WT[r, i] + tau * WT[7 + r, i] + h2 * WT[14 + r, i]
 
 
+@njit(**_JIT)
+def wave_load_pass(x, y, z, vx, vy, vz, dx, dy, dz, U, Uz, cdir, cdn, cdt, cin, sband,
+                   dband, WV, P, PW):
+    """The Morison loads of a line in waves, per node, into PW (3, n) [N] = P (the dead
+    load, zeros without one) + drag + fluid inertia; :func:`node_pass` adds PW as its dead
+    load (its own drag off), so that a run without waves runs the node passes it ran
+    before. Drag on the velocity relative to the water, u = U cdir + Uz e_z (the current,
+    :func:`current_pass`; cdir (3,)) + the waves' particle velocity WV[0:3] - v, normal
+    and tangential as :func:`node_pass` has it; fluid inertia cin[0] a_n + cin[1] a_t, a =
+    WV[3:6] the fluid acceleration split along the director, cin (2, n) = ((1 + C_a), 1)
+    rho pi D^2 / 4 x tributary length [kg] (the Froude-Krylov force of the whole
+    acceleration and the added mass normal to the axis, :mod:`vfife.waves`). Each times
+    the node's immersed fraction under the instantaneous surface WV[6] (:func:`node_pass`'s
+    rule)."""
+    n = x.shape[0]
+    cx = cdir[0]
+    cy = cdir[1]
+    cz = cdir[2]
+    for i in range(np.uint64(n)):           # unsigned: see _NOWRAP
+        ex = dx[i]
+        ey = dy[i]
+        ez = dz[i]
+        band = max(dband[i], sband[i] * abs(ey))
+        wet = min(max((WV[6, i] - y[i]) / band + 0.5, 0.0), 1.0)
+        cu = U[i]
+        rx = cu * cx + WV[0, i] - vx[i]
+        ry = cu * cy + WV[1, i] - vy[i]
+        rz = cu * cz + Uz[i] + WV[2, i] - vz[i]
+        rt = rx * ex + ry * ey + rz * ez
+        rnx = rx - rt * ex
+        rny = ry - rt * ey
+        rnz = rz - rt * ez
+        cn = wet * cdn[i] * math.sqrt(rnx * rnx + rny * rny + rnz * rnz)
+        ft = wet * cdt[i] * abs(rt) * rt
+        ax_ = WV[3, i]
+        ay_ = WV[4, i]
+        az_ = WV[5, i]
+        at = ax_ * ex + ay_ * ey + az_ * ez
+        ci = wet * cin[0, i]
+        ct = wet * cin[1, i] * at - ci * at + ft
+        PW[0, i] = P[0, i] + cn * rnx + ci * ax_ + ct * ex
+        PW[1, i] = P[1, i] + cn * rny + ci * ay_ + ct * ey
+        PW[2, i] = P[2, i] + cn * rnz + ci * az_ + ct * ez
+
+
 # ============================================================================ driver
 @njit(**_JIT)
 def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd, jinv,
         jrot, wload, kst, cdn, cdt, heights, speeds, slopes, cdir, use_drag, Uz, speeds_z,
         slopes_z, turning, cseabed, mu, vfric, eta, Q, use_dashpot, wair, iair, madd,
         sband, dband, ysurf, use_surface, use_flow, t0, fpar, fnodes, FL, P, use_dead,
-        WT, WV, cin, use_waves, dt, c, top0, top_disp, tol_f, tol_m, vmax):
+        WT, WV, cin, PW, cdir3, use_waves, dt, c, top0, top_disp, tol_f, tol_m, vmax):
     """Advance up to ``nsteps`` explicit steps.
 
     jinv, jrot : (n,) inverse rotational inertia [1/(kg m2)] (0 at a clamped end) and the
@@ -808,7 +818,8 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
         used only when use_dashpot (statics; see :func:`dashpot_pass`).
     wair, iair, madd, sband, dband : (n,) weight in air [N], inverse mass [1/kg], added
         mass [kg], tributary length and outer diameter [m] of the nodes, for the sea surface
-        y = ysurf [m], used only when use_surface (dynamics; see :func:`node_pass`).
+        at the heights ysurf (n,) [m] of the nodes, used only when use_surface (dynamics;
+        see :func:`node_pass`).
     use_flow, t0, fpar, fnodes, FL : internal flow (see :func:`flow_pass`), run only when
         use_flow (dynamics): t0 [s] the time at the start of this call, FL (6, n)
         the flow forces (rows 0-2) and the previous step's Coriolis forces (rows 3-5).
@@ -816,10 +827,13 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
         added to the weight when use_dead (rows x, y on the planar path).
     planar : use the planar kernels on rows 0-1 of X, V, D (z untouched) and W[2] as the
         rotation rate; F (2, ne), MA, MB (1, ne), cdir (2,) then.
-    WT, WV, cin, use_waves : waves (see :func:`wave_taylor` and :func:`node_pass`): WT
-        (21, n) the kinematics' quadratic Taylor coefficients about the time t0 of this
-        call, WV (7, n) scratch for their values at each step, cin (2, n) the inertia
-        coefficients [kg]; run only when use_waves (dynamics).
+    WT, WV, cin, PW, cdir3, use_waves : waves (:func:`wave_taylor`,
+        :func:`wave_load_pass`): WT (21, n) the kinematics' quadratic Taylor coefficients
+        about the time t0 of this call, WV (7, n) scratch for their values at each step
+        (row 6 the surface, the node passes' ysurf then), cin (2, n) the inertia
+        coefficients [kg], PW (3, n) scratch for the loads (the node passes' dead load
+        then, their drag off), cdir3 (3,) the current's heading; run only when use_waves
+        (dynamics).
     top0 (3,) hang-off position at zero displacement; top_disp (3, nsteps + 1) hang-off
     displacement [m] (x, y, z) at the end of each step (column 0: at the start). The
     anchor (node 0) keeps its position.
@@ -837,6 +851,12 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
     ke = 0.0
     Wz = W[2]
     check = tol_f >= 0.0 or tol_m >= 0.0
+    # with waves the node passes take the wave pass's loads as their dead load (their own
+    # drag off: the wave pass has it, on the current and the waves) and its surface
+    node_drag = use_drag and not use_waves
+    load = PW if use_waves else P
+    use_load = use_dead or use_waves
+    ys = WV[6] if use_waves else ysurf
     drag_profile = use_drag and heights.shape[0] > 1
     drag_z = use_drag and turning and not planar
     if use_drag and not drag_profile:       # uniform current: U never changes
@@ -851,6 +871,8 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
                 current_pass(X[1], heights, speeds_z, slopes_z, Uz)
         if use_waves:
             wave_taylor(WT, k * dt, WV)
+            wave_load_pass(X[0], X[1], X[2], V[0], V[1], V[2], D[0], D[1], D[2], U, Uz,
+                           cdir3, cdn, cdt, cin, sband, dband, WV, P, PW)
         if use_flow:
             tk = t0 + k * dt
             if planar:
@@ -867,11 +889,10 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
                 dashpot_pass_2d(X[0], X[1], V[0], V[1], eta, Q[0], Q[1])
             r2, m2, k1 = node_pass_2d(X[0], X[1], V[0], V[1], D[0], D[1], Wz, F[0], F[1],
                                       MA[0], MB[0], wload, mass, im, imd, jinv, jrot, kst,
-                                      cseabed, mu, vfric, U, cdn, cdt, cdir, use_drag,
+                                      cseabed, mu, vfric, U, cdn, cdt, cdir, node_drag,
                                       Q[0], Q[1], use_dashpot, wair, iair, madd, sband,
-                                      dband, ysurf, use_surface, FL[0], FL[1], use_flow,
-                                      P[0], P[1], use_dead, WV, cin, use_waves, dt, c,
-                                      stats, R[0], R[1])
+                                      dband, ys, use_surface, FL[0], FL[1], use_flow,
+                                      load[0], load[1], use_load, dt, c, stats, R[0], R[1])
         else:
             element_pass(X[0], X[1], X[2], D[0], D[1], D[2], l0, kax, kb, F[0], F[1], F[2],
                          MA[0], MA[1], MA[2], MB[0], MB[1], MB[2])
@@ -881,10 +902,10 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
                                    W[0], W[1], W[2], F[0], F[1], F[2], MA[0], MA[1], MA[2],
                                    MB[0], MB[1], MB[2], wload, mass, im, imd, jinv, jrot,
                                    kst, cseabed, mu, vfric, U, Uz, cdn, cdt, cdir,
-                                   use_drag, Q[0], Q[1], Q[2], use_dashpot, wair, iair,
-                                   madd, sband, dband, ysurf, use_surface, FL[0], FL[1],
-                                   FL[2], use_flow, P[0], P[1], P[2], use_dead, WV, cin,
-                                   use_waves, dt, c, stats, R[0], R[1])
+                                   node_drag, Q[0], Q[1], Q[2], use_dashpot, wair, iair,
+                                   madd, sband, dband, ys, use_surface, FL[0], FL[1],
+                                   FL[2], use_flow, load[0], load[1], load[2], use_load, dt,
+                                   c, stats, R[0], R[1])
         ke = 0.5 * k1
         for j in range(3):
             d1 = top_disp[j, k + 1]

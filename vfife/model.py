@@ -127,7 +127,9 @@ class Model:
         self.cseabed = 2.0 * zeta * np.sqrt(self.kseabed * self.trib * (self.mass + self.madd))
         self.vfric = 0.01          # [m/s] Coulomb friction regularisation speed
         self.use_surface = bool(surface and scene.water_depth is not None)
-        self.ysurf = float(scene.water_depth) if self.use_surface else math.inf
+        # the surface's height at each node [m] (the mean level; with waves the kernels
+        # take the instantaneous one, vfife.waves)
+        self.ysurf = np.full(n, float(scene.water_depth) if self.use_surface else math.inf)
         self.wair = scene.gravity * self.mass       # weight in air [N] (pipe + contents)
         self.iair = 1.0 / self.mass
         self.dnode = _node_diameters(scene, mesh)
@@ -147,9 +149,16 @@ class Model:
         wv = scene.waves
         self.use_waves = bool(waves and wv is not None and wv.line_loads)
         self.waves = WaveLoads(scene, mesh) if self.use_waves else None
-        self.WT = self.waves.WT if self.use_waves else np.zeros((21, 1))
-        self.WV = self.waves.WV if self.use_waves else np.zeros((7, 1))
-        self.cin = self.waves.cin if self.use_waves else np.zeros((2, 1))
+        # full-size placeholders without waves, as FL and P: the vectorised node passes
+        # guard their SIMD loops with runtime overlap checks over every array they may
+        # read, sized by the node count; with a (7, 1) placeholder the checks' outcome,
+        # so the loop taken (SIMD or scalar, which round differently), could depend on
+        # where the heap put it
+        n = mesh.n
+        self.WT = self.waves.WT if self.use_waves else np.zeros((21, n))
+        self.WV = self.waves.WV if self.use_waves else np.zeros((7, n))
+        self.cin = self.waves.cin if self.use_waves else np.zeros((2, n))
+        self.PW = np.zeros((3, n))
 
     def _set_flow(self, mode: str | None) -> None:
         """Arrays of the internal-flow pass (see :mod:`vfife.flow`)."""
@@ -264,7 +273,8 @@ class Model:
                           self.madd, self.trib, self.dnode, self.ysurf, self.use_surface,
                           self.use_flow, self.time, self.fpar, self.fnodes,
                           self.FL, self.P, self.use_dead, self.WT, self.WV, self.cin,
-                          self.use_waves, dt, c, top0, top_disp, tol_f, tol_m, vmax)
+                          self.PW, self.cdir, self.use_waves, dt, c, top0, top_disp,
+                          tol_f, tol_m, vmax)
         self.steps += int(out[0])
         if self.use_flow:
             self.time += int(out[0]) * dt
