@@ -102,7 +102,7 @@ class WaveLoads:
                           self.amp, self.omega, self.k, self.phase, self.cosb, self.sinb,
                           self.components.origin[0], self.components.origin[1],
                           self.depth, self.wheeler, out)
-        return float(_ramp(t, self.ramp_time)[0] * out[6, 0])
+        return float(_ramp(t, self.ramp_time)[0] * out[6, 0]) + 0.0     # no -0 at t = 0
 
 
 def _ramp(t: float, ramp: float) -> tuple[float, float, float]:
