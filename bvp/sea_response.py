@@ -65,6 +65,7 @@ import numpy as np
 from scipy.special import erf, ndtr
 
 from riser.errors import UnsupportedSceneError
+from riser.hang_off_motion import scene_components, vessel_amplitudes
 from riser.result import SolveResult, Status
 from riser.scene import Scene
 
@@ -153,7 +154,7 @@ def solve_sea(scene: Scene, static: SolveResult | None = None, duration: float =
     pieces = build_pieces(scene, static.profile)
     setup = prepare(scene, pieces, grid(pieces, intervals))
     f, mid, n = setup.f, setup.mid, comp.size
-    motions = wl.hang_off_motion(scene, comp)
+    motions = vessel_amplitudes(scene, comp)[1]
     flows = [None] * n
     if scene.waves.line_loads:
         line = wl.LineFlow(scene, static.profile, comp, 0)
@@ -226,7 +227,7 @@ def _require_sea(scene: Scene):
         raise UnsupportedSceneError(f"{src}: dynamics.top_motion: not beside a sea in the "
                                     "sea response (the vessel moves the hang-off)")
     require_harmonic(scene, np.zeros(3, complex))
-    comp = wl.components(scene)
+    comp = scene_components(scene)
     top = max(scene.ends.anchor_point[1], scene.ends.hang_off_point[1])
     wl.require_submerged(scene, comp, top, "the line's highest end")
     return comp
@@ -321,9 +322,7 @@ def _static(pieces, s) -> dict:
 
 def _statistics(scene, comp, s, Q, duration, info) -> SeaResponse:
     """The spectra and statistics of the amplitudes Q (name -> (n_w, n_s) complex)."""
-    sp = scene.waves.spectrum
-    lo, hi = sp.omega_range
-    dw = (hi - lo) / sp.components
+    dw = scene.waves.spectrum.component_omegas()[1]
     a = comp.amplitude * np.exp(-1j * comp.phase)
     w = comp.omega[:, None]
     out = SeaResponse("bvp", scene.name, Status.CONVERGED, "", duration, s,

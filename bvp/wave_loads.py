@@ -44,9 +44,11 @@ import numpy as np
 from scipy.interpolate import CubicSpline
 
 from riser.errors import SceneError, UnsupportedSceneError
+from riser.hang_off_motion import scene_components, vessel_amplitudes
 from riser.profile import Profile
 from riser.response import harmonic_motion, motion_amplitudes
 from riser.scene import Scene
+from riser.sections import segment_properties
 from riser.waves import WaveComponents
 
 #: tolerance of the submergence check [m]
@@ -96,21 +98,13 @@ def line_points(profile: Profile):
 
 
 def inertia_coefficients(scene: Scene) -> list[tuple[float, float, float, float]]:
-    """Per segment (s_start, s_end [m], (1 + C_a) rho A, rho A [kg/m]), A = pi D^2 / 4:
-    the fluid inertia coefficients per unstretched length normal to the line (the
+    """Per segment (s_start, s_end [m], (1 + C_a) rho A, rho A [kg/m]), A = pi D^2 / 4 of
+    the hydrodynamic diameter (:func:`riser.sections.segment_properties`' fluid and added
+    masses): the fluid inertia coefficients per unstretched length normal to the line (the
     Froude-Krylov force plus the added mass) and along it (the Froude-Krylov force of the
-    axial pressure gradient alone: a line has no axial added mass), D the hydrodynamic
-    diameter (the segment's, else the line type's, else its outer diameter, as
-    riser.sections)."""
-    out, s0 = [], 0.0
-    rho = scene.water_density
-    for seg in scene.segments:
-        lt = scene.line_types[seg.line_type]
-        D = seg.hydro_diameter or lt.hydro_diameter or lt.outer_diameter
-        rho_a = rho * math.pi * D * D / 4
-        out.append((s0, s0 + seg.length, (1.0 + lt.added_mass) * rho_a, rho_a))
-        s0 += seg.length
-    return out
+    axial pressure gradient alone: a line has no axial added mass)."""
+    return [(p.s_start, p.s_end, p.fluid_mass + p.added_mass, p.fluid_mass)
+            for p in segment_properties(scene)]
 
 
 class LineFlow:
@@ -147,32 +141,6 @@ class LineFlow:
 
 
 # ------------------------------------------------------------------ the scene's waves
-def components(scene: Scene) -> WaveComponents:
-    """The scene's wave components, phases referred to the waves' origin (default the
-    hang-off's static (x, z))."""
-    xh, _, zh = scene.ends.hang_off_point
-    return scene.waves.components(scene.water_depth, scene.gravity, (xh, zh))
-
-
-def rao_origin(scene: Scene) -> np.ndarray:
-    """(x, y, z) [m] of the vessel's RAO origin: the hang-off's static point minus the
-    lever arm (scene axes)."""
-    return np.asarray(scene.ends.hang_off_point, float) - scene.vessel.lever_arm()
-
-
-def hang_off_motion(scene: Scene, comp: WaveComponents) -> np.ndarray:
-    """(3, n) complex hang-off displacement amplitudes (x, y, z) [m] of each component:
-    the vessel's RAO motion at the component's elevation amplitude at the RAO origin
-    (zero without a vessel)."""
-    if scene.vessel is None:
-        return np.zeros((3, comp.size), complex)
-    o = rao_origin(scene)
-    A = np.array([elevation_amplitude(comp, j, o[0], o[2]) for j in range(comp.size)])
-    per_metre = scene.vessel.hang_off_amplitudes(2.0 * math.pi / comp.omega,
-                                                 np.degrees(comp.heading))
-    return per_metre * A[None, :]
-
-
 def trough(comp: WaveComponents) -> float:
     """The depth [m] below the mean level the troughs reach: the regular trains'
     amplitudes summed, plus Hs = 4 sqrt(m0) of an irregular sea's components (the most
@@ -208,9 +176,9 @@ def regular_wave(scene: Scene, profile: Profile | None = None, s=None, theta=Non
             f"{scene.source}: environment.waves: the harmonic response solves one regular "
             "train (give exactly one [[environment.waves.trains]] and no spectrum; an "
             "irregular sea: bvp.sea_response.solve_sea)")
-    comp = components(scene)
+    comp = scene_components(scene)
     period = float(waves.trains[0].period)
-    motion = hang_off_motion(scene, comp)[:, 0]
+    motion = vessel_amplitudes(scene, comp)[1][:, 0]
     flow = None
     if profile is not None and waves.line_loads:
         flow = LineFlow(scene, profile, comp, 0)
@@ -252,7 +220,7 @@ def drive(scene: Scene, period, motion):
                 f"train of {own:g} s: one harmonic response has one period (give them "
                 "the same period, or drop one)")
         motion = motion + motion_amplitudes(axis, amplitude)
-    return own, motion, components(scene)
+    return own, motion, scene_components(scene)
 
 
 def top_motion(scene: Scene) -> tuple[str, float, float]:

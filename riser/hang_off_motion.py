@@ -3,6 +3,10 @@
 RAOs (:mod:`riser.vessel`). An input every dynamic method applies as it is given (the
 same path for the VFIFE, the MoorDyn peer and the frequency domain's amplitudes).
 
+:class:`HangOffPath` does the per-scene work once (the wave components, the RAOs
+interpolated per component) and is then evaluated at any times: a time-stepping loop
+builds it once and calls it every interval.
+
 Conventions: SI; (x, y, z) the scene's axes; t [s] from the start of the dynamic run.
 """
 
@@ -11,6 +15,21 @@ from __future__ import annotations
 import math
 
 import numpy as np
+
+
+def hang_off_point(scene) -> tuple[float, float, float]:
+    """(x, y, z) [m] of the scene's static hang-off (fixed ends' point, else the end
+    form's (x, y) in the plane z = 0)."""
+    e = scene.ends
+    return e.hang_off_point if hasattr(e, "hang_off_point") else (*e.hang_off, 0.0)
+
+
+def scene_components(scene):
+    """The scene's wave components (:meth:`riser.waves.Waves.components` in its water
+    depth and gravity), phases referred to the waves' origin, by default the hang-off's
+    static (x, z)."""
+    x, _, z = hang_off_point(scene)
+    return scene.waves.components(scene.water_depth, scene.gravity, (x, z))
 
 
 def axis_displacement(scene, t) -> np.ndarray:
@@ -25,49 +44,60 @@ def axis_displacement(scene, t) -> np.ndarray:
         d = np.interp(t, tm.times, tm.displacements)
     else:
         d = tm.amplitude * np.sin(2.0 * math.pi * t / tm.period)
-    ramp = tm.ramp
-    if ramp > 0.0:
-        r = np.where(t < ramp, 0.5 * (1.0 - np.cos(math.pi * np.minimum(t, ramp) / ramp)),
-                     1.0)
-        d = d * r
-    return d
+    return d * half_cosine_ramp(t, tm.ramp)
 
 
-def vessel_amplitudes(scene) -> tuple[np.ndarray, np.ndarray]:
+def half_cosine_ramp(t, ramp: float) -> np.ndarray:
+    """0.5 (1 - cos(pi t / ramp)) up to ``ramp`` [s], 1 after it (1 everywhere for ramp
+    <= 0)."""
+    t = np.asarray(t, float)
+    if ramp <= 0.0:
+        return np.ones_like(t)
+    return 0.5 * (1.0 - np.cos(math.pi * np.minimum(t, ramp) / ramp))
+
+
+def vessel_amplitudes(scene, comp=None) -> tuple[np.ndarray, np.ndarray]:
     """(omega (m,) [rad/s], complex amplitudes (3, m) [m]) of the hang-off's displacement
-    for each wave component: Re(D_j e^{i omega_j t}) summed over j is the motion without
-    its ramp. The component's phase at the RAO origin (the hang-off's static position
-    minus the vessel's lever arm) sets D_j = a_j H_j e^{-i(k_j (r_o - r_0) . e_j +
-    eps_j)}, H_j the (3,) hang-off RAO of :meth:`riser.vessel.Vessel.hang_off_amplitudes`."""
-    vessel, waves = scene.vessel, scene.waves
-    hang = scene.ends.hang_off_point if hasattr(scene.ends, "hang_off_point") else None
-    if hang is None:
-        x, y = scene.ends.hang_off
-        hang = (x, y, 0.0)
-    comp = waves.components(scene.water_depth, scene.gravity, (hang[0], hang[2]))
-    origin = np.asarray(hang, float) - vessel.lever_arm()
+    for each wave component (``comp``: the scene's, :func:`scene_components`, when None):
+    Re(D_j e^{i omega_j t}) summed over j is the motion without its ramp; zeros without a
+    vessel. The component's phase at the RAO origin (the hang-off's static position minus
+    the vessel's lever arm) sets D_j = a_j H_j e^{-i(k_j (r_o - r_0) . e_j + eps_j)}, H_j
+    the (3,) hang-off RAO of :meth:`riser.vessel.Vessel.hang_off_amplitudes`."""
+    comp = scene_components(scene) if comp is None else comp
+    vessel = scene.vessel
+    if vessel is None:
+        return comp.omega, np.zeros((3, comp.size), complex)
+    origin = np.asarray(hang_off_point(scene), float) - vessel.lever_arm()
     dx, dz = origin[0] - comp.origin[0], origin[2] - comp.origin[1]
     phase = comp.k * (dx * np.cos(comp.heading) + dz * np.sin(comp.heading)) + comp.phase
     H = vessel.hang_off_amplitudes(2.0 * math.pi / comp.omega, np.degrees(comp.heading))
     return comp.omega, H * (comp.amplitude * np.exp(-1j * phase))[None, :]
 
 
-def hang_off_displacement(scene, t) -> np.ndarray:
-    """(3, nt) displacement [m] of the hang-off at times t [s]: the top motion along its
-    axis, or the vessel's RAO motion times the waves' ramp (zeros with neither)."""
-    t = np.atleast_1d(np.asarray(t, float))
-    out = np.zeros((3, t.size))
-    dyn = scene.dynamics
-    tm = dyn.top_motion if dyn is not None else None
-    if tm is not None:
-        out["xyz".index(tm.axis)] = axis_displacement(scene, t)
+class HangOffPath:
+    """The scene's prescribed hang-off path, set up once: ``path(t)`` is the (3, nt)
+    displacement [m] at times t [s]: the top motion along its axis, or the vessel's RAO
+    motion times the waves' ramp (zeros with neither)."""
+
+    def __init__(self, scene):
+        self.scene = scene
+        dyn = scene.dynamics
+        self.top_motion = dyn.top_motion if dyn is not None else None
+        self.vessel = None
+        if self.top_motion is None and scene.vessel is not None:
+            self.vessel = vessel_amplitudes(scene) + (scene.waves.ramp,)
+
+    def __call__(self, t) -> np.ndarray:
+        t = np.atleast_1d(np.asarray(t, float))
+        out = np.zeros((3, t.size))
+        if self.top_motion is not None:
+            out["xyz".index(self.top_motion.axis)] = axis_displacement(self.scene, t)
+        elif self.vessel is not None:
+            omega, D, ramp = self.vessel
+            out = (D @ np.exp(1j * np.outer(omega, t))).real * half_cosine_ramp(t, ramp)
         return out
-    if scene.vessel is not None:
-        omega, D = vessel_amplitudes(scene)
-        e = np.exp(1j * np.outer(omega, t))                 # (m, nt)
-        out = (D @ e).real
-        comp_ramp = scene.waves.ramp
-        if comp_ramp > 0.0:
-            r = np.minimum(t, comp_ramp) / comp_ramp
-            out = out * (0.5 * (1.0 - np.cos(math.pi * r)))[None, :]
-    return out
+
+
+def hang_off_displacement(scene, t) -> np.ndarray:
+    """(3, nt) displacement [m] of the hang-off at times t [s] (:class:`HangOffPath`)."""
+    return HangOffPath(scene)(t)

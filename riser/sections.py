@@ -28,6 +28,9 @@ class SegmentProperties:
         drag_normal_coef * |u_n| u_n for the relative normal velocity u_n.
     drag_tangential_coef : 0.5 rho pi D C_Dt [kg/m2] (Wang et al. eq. (4): uses the perimeter).
     added_mass : C_a rho pi D^2 / 4 [kg/m], acting normal to the pipe axis.
+    fluid_mass : rho pi D^2 / 4 [kg/m], the water of the hydrodynamic section: the
+        Froude-Krylov coefficient of the fluid inertia in waves (the added mass is C_a
+        times it).
     """
 
     s_start: float
@@ -40,6 +43,7 @@ class SegmentProperties:
     drag_normal_coef: float
     drag_tangential_coef: float
     added_mass: float
+    fluid_mass: float
 
     @property
     def length(self) -> float:
@@ -83,6 +87,7 @@ def segment_properties(scene: Scene) -> list[SegmentProperties]:
             drag_normal_coef=0.5 * rho * Dh * lt.drag_normal,
             drag_tangential_coef=0.5 * rho * math.pi * Dh * lt.drag_tangential,
             added_mass=lt.added_mass * rho * math.pi / 4.0 * Dh * Dh,
+            fluid_mass=rho * math.pi / 4.0 * Dh * Dh,
         ))
         s0 += seg.length
     return out

@@ -18,7 +18,7 @@ node by node by the immersed fraction of the node's stretch of line (see
 leaves the water). Damping: ``[dynamics]
 damping`` [1/s], mass-proportional (structural; default 0), on top of the drag.
 
-Top motion: ``top0 + d(t) axis`` with d(t) from :func:`top_displacement`, multiplied by
+Top motion: ``top0 + d(t) axis`` with d(t) from :func:`riser.hang_off_motion.axis_displacement`, multiplied by
 a half-cosine ramp over ``ramp_time`` (default one period of a harmonic motion: an
 impulsive start rings the line axially for the whole run).
 
@@ -35,7 +35,7 @@ from enum import StrEnum
 import numpy as np
 
 from riser.callbacks import with_fraction
-from riser.hang_off_motion import axis_displacement, hang_off_displacement
+from riser.hang_off_motion import HangOffPath, scene_components
 
 from .dynamic_outputs import Recorder
 from .flow import lightest_mass_factor
@@ -55,19 +55,12 @@ class DynamicsOutcome(StrEnum):
     BLOW_UP = "blow-up"
 
 
-def top_displacement(scene, t: np.ndarray) -> np.ndarray:
-    """Hang-off displacement [m] along the top motion's axis at times t [s]
-    (:func:`riser.hang_off_motion.axis_displacement`)."""
-    return axis_displacement(scene, t)
-
-
-def wave_speed_hint(scene) -> float:
+def wave_speed_hint(scene, comp) -> float:
     """An upper bound of the waves' particle speed at the surface and of the vessel's
-    hang-off speed [m/s] (for the explicit drag's step): sum of a omega (x 2 with a
-    vessel), 0 without waves."""
-    if scene.waves is None:
+    hang-off speed [m/s] (for the explicit drag's step): sum of a omega of the components
+    ``comp`` (x 2 with a vessel), 0 without waves (``comp`` None)."""
+    if comp is None:
         return 0.0
-    comp = scene.waves.components(scene.water_depth, scene.gravity, (0.0, 0.0))
     v = float(np.sum(comp.amplitude * comp.omega) / np.tanh(np.min(comp.k) * comp.depth))
     return 2.0 * v if scene.vessel is not None else v
 
@@ -125,8 +118,8 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
     reach = 0.0 if tm is None else (tm.amplitude if tm.times is None
                                     else float(np.max(np.abs(tm.displacements))))
     trough = 0.0
-    if scene.waves is not None:      # the surface comes down by the waves' amplitudes
-        comp = scene.waves.components(scene.water_depth, scene.gravity, (0.0, 0.0))
+    comp = scene_components(scene) if scene.waves is not None else None
+    if comp is not None:             # the surface comes down by the waves' amplitudes
         trough = float(np.sum(comp.amplitude))
         reach += trough if scene.vessel is not None else 0.0
     emerge = model.use_surface and (float(np.max(static.X[1])) + reach
@@ -134,7 +127,7 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
     steps = critical_steps(mesh, rot_scale=rot_scale, tension=1.5 * tmax,
                            added_mass=added and not emerge,
                            seabed_stiffness=kseabed, seabed_damping=model.cseabed,
-                           drag_speed=2.0 * (max_speed_hint(scene) + wave_speed_hint(scene))
+                           drag_speed=2.0 * (max_speed_hint(scene) + wave_speed_hint(scene, comp))
                            if model.use_drag else 0.0,
                            mass_factor=lightest_mass_factor(scene))
     dt, limit = choose_step(steps, vf.time_step_safety)
@@ -148,7 +141,6 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
     if model.use_waves or scene.vessel is not None:
         # the shortest wave period sampled 40 times, as a harmonic top motion's (and
         # within the kinematics' interval, vfife.waves)
-        comp = scene.waves.components(scene.water_depth, scene.gravity, (0.0, 0.0))
         shortest = min(2.0 * math.pi / float(np.max(comp.omega)) / 40.0, env_dt)
         env_dt = out_dt / math.ceil(out_dt / min(out_dt, shortest) - 1e-9)
     nsub = max(1, int(math.ceil(env_dt / dt - 1e-9)))
@@ -156,6 +148,7 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
     n_env = int(round(dyn.duration / env_dt))
     per_out = max(1, int(round(out_dt / env_dt)))
     top0 = static.X[:, -1].copy()
+    path = HangOffPath(scene)            # set up once, evaluated every interval
     elevation = None
     if model.use_waves:
         origin = model.waves.components.origin
@@ -175,7 +168,7 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
     e0 = None
     for j in range(n_env):
         tj = np.linspace(j * env_dt, (j + 1) * env_dt, nsub + 1)
-        disp = hang_off_displacement(scene, tj)
+        disp = path(tj)
         if model.use_waves:
             model.waves.evaluate(model.X, j * env_dt)
         k, res, mres, ke, st = model.run(nsub, dt, dyn.damping, top_disp=disp, top0=top0)

@@ -25,10 +25,11 @@ class Mesh:
     """Nodes i = 0..n-1 (anchor first) and elements e = 0..n-2.
 
     s : (n,) unstretched arc length of the nodes [m].
-    l0, EA, EI, mass_pl, weight_pl, rot_pl, added_pl, cdn_pl, cdt_pl : (ne,) element
-        length [m] and per-length section values (EA [N], EI [N m2], mass [kg/m], submerged
-        weight [N/m, + down], diametral rotary inertia [kg m], added mass [kg/m], drag
-        coefficients 0.5 rho D C_D [kg/m2]).
+    l0, EA, EI, mass_pl, weight_pl, rot_pl, added_pl, cdn_pl, cdt_pl, fluid_pl : (ne,)
+        element length [m] and per-length section values (EA [N], EI [N m2], mass [kg/m],
+        submerged weight [N/m, + down], diametral rotary inertia [kg m], added mass [kg/m],
+        drag coefficients 0.5 rho D C_D [kg/m2], the water of the hydrodynamic section rho
+        pi D^2 / 4 [kg/m], riser.sections).
     trib : (n,) tributary length of the nodes [m]; :meth:`lump` gives the other nodal
         values.
     """
@@ -43,6 +44,7 @@ class Mesh:
     added_pl: np.ndarray
     cdn_pl: np.ndarray
     cdt_pl: np.ndarray
+    fluid_pl: np.ndarray
 
     @property
     def n(self) -> int:
@@ -69,7 +71,7 @@ def build_mesh(scene: Scene, element_length: float) -> Mesh:
     """Mesh ``scene`` with elements of at most ``element_length`` [m]."""
     props = segment_properties(scene)
     cols: dict[str, list] = {k: [] for k in ("l0", "EA", "EI", "mass_pl", "weight_pl", "rot_pl",
-                                             "added_pl", "cdn_pl", "cdt_pl")}
+                                             "added_pl", "cdn_pl", "cdt_pl", "fluid_pl")}
     s = [0.0]
     for p in props:
         ne = max(1, int(math.ceil(p.length / element_length - 1e-9)))
@@ -85,6 +87,7 @@ def build_mesh(scene: Scene, element_length: float) -> Mesh:
         cols["added_pl"] += [p.added_mass] * ne
         cols["cdn_pl"] += [p.drag_normal_coef] * ne
         cols["cdt_pl"] += [p.drag_tangential_coef] * ne
+        cols["fluid_pl"] += [p.fluid_mass] * ne
     arrays = {k: np.asarray(v, dtype=float) for k, v in cols.items()}
     s_arr = np.asarray(s)
     s_arr[-1] = props[-1].s_end

@@ -34,6 +34,8 @@ import math
 
 import numpy as np
 
+from riser.hang_off_motion import scene_components
+
 from . import kernels
 
 #: kinematics intervals per shortest component period (see the module docstring)
@@ -42,14 +44,11 @@ KINEMATICS_PER_PERIOD = 20
 
 class WaveLoads:
     """The arrays of the wave kernels for one model: components, the inertia
-    coefficients ``cin`` (2, n) [kg] (normal, tangential), the Taylor coefficients ``WT`` (21, n) and the
-    current values ``WV`` (7, n)."""
+    coefficients ``cin`` (2, n) [kg] (normal, tangential), the Taylor coefficients ``WT``
+    (21, n) and the current values ``WV`` (7, n)."""
 
     def __init__(self, scene, mesh):
-        waves = scene.waves
-        e = scene.ends
-        hang = e.hang_off_point if hasattr(e, "hang_off_point") else (*e.hang_off, 0.0)
-        comp = waves.components(scene.water_depth, scene.gravity, (hang[0], hang[2]))
+        comp = scene_components(scene)
         self.components = comp
         self.depth = float(scene.water_depth)
         self.amp = comp.amplitude.copy()
@@ -60,17 +59,9 @@ class WaveLoads:
         self.sinb = np.sin(comp.heading)
         self.wheeler = comp.stretching == "wheeler"
         self.ramp_time = comp.ramp_time
-        ends = np.cumsum([seg.length for seg in scene.segments])
-        types = [scene.line_types[seg.line_type] for seg in scene.segments]
-        # the hydrodynamic diameter, as the added mass and the drag take it
-        dh = [seg.hydro_diameter or lt.hydro_diameter or lt.outer_diameter
-              for seg, lt in zip(scene.segments, types)]
-        area = np.array([math.pi / 4.0 * d ** 2 for d in dh])
-        ca = np.array([lt.added_mass for lt in types])
-        s_mid = 0.5 * (mesh.s[1:] + mesh.s[:-1])
-        seg = np.clip(np.searchsorted(ends, s_mid, side="left"), 0, len(area) - 1)
-        rho_a = scene.water_density * area[seg]
-        self.cin = np.vstack([mesh.lump((1.0 + ca[seg]) * rho_a), mesh.lump(rho_a)])
+        # normal: Froude-Krylov + added mass; along the axis: Froude-Krylov alone
+        self.cin = np.vstack([mesh.lump(mesh.fluid_pl + mesh.added_pl),
+                              mesh.lump(mesh.fluid_pl)])
         n = mesh.n
         self.WT = np.zeros((21, n))
         self.WV = np.zeros((7, n))

@@ -125,6 +125,15 @@ def wave_scene(scene: Scene, amplitude: float, ramp_time: float | None = None) -
     return scene.replace(waves=new)
 
 
+def require_one_drive(scene: Scene) -> None:
+    """Refuse a top motion beside the waves (SceneError naming the key): a comparison in
+    waves has one drive, the waves, with a [vessel] for the hang-off's motion."""
+    if scene.dynamics is not None and scene.dynamics.top_motion is not None:
+        raise SceneError(scene.source, "dynamics.top_motion", "not with waves in the "
+                         "dynamic comparison (one drive: the waves, with a [vessel] for "
+                         "the hang-off's motion)")
+
+
 def check_waves(scene: Scene, amplitudes=None) -> tuple[str, float, list[float]]:
     """(:data:`WAVE`, period [s], the wave amplitudes [m] sorted) of a comparison driven
     by the scene's one regular train: every amplitude checked before solving (the
@@ -136,10 +145,7 @@ def check_waves(scene: Scene, amplitudes=None) -> tuple[str, float, list[float]]
         raise SceneError(scene.source, "environment.waves", "the harmonic comparison takes "
                          "one regular train (an irregular sea: its own comparison, several "
                          "trains: one at a time)")
-    if scene.dynamics is not None and scene.dynamics.top_motion is not None:
-        raise SceneError(scene.source, "dynamics.top_motion", "not with waves in the "
-                         "dynamic comparison (one drive: the waves, with a [vessel] for "
-                         "the hang-off's motion)")
+    require_one_drive(scene)
     tr = w.trains[0]
     amps = sorted(amplitudes) if amplitudes else [0.5 * tr.height]
     for a in amps:

@@ -38,7 +38,8 @@ from riser.errors import SceneError, SolveFailed, UnsupportedSceneError
 from riser.scene import Scene
 from verification.pipeline import vfife_equivalent
 
-from .dynamics import RAMP_FUNDAMENTALS, RAMP_PERIODS, ramp_periods, tightened_statics
+from .dynamics import (RAMP_FUNDAMENTALS, RAMP_PERIODS, ramp_periods, require_one_drive,
+                       tightened_statics)
 
 #: the issue's bound on the hang-off tension's standard deviation (relative)
 TOLERANCE = 0.05
@@ -85,10 +86,7 @@ def check_sea(scene: Scene) -> None:
     if w.trains:
         raise SceneError(scene.source, "environment.waves.trains", "not with a spectrum in "
                          "the dynamic comparison (the irregular sea alone: one drive)")
-    if scene.dynamics is not None and scene.dynamics.top_motion is not None:
-        raise SceneError(scene.source, "dynamics.top_motion", "not with waves in the "
-                         "dynamic comparison (one drive: the sea, with a [vessel] for the "
-                         "hang-off's motion)")
+    require_one_drive(scene)
 
 
 def repeat_period(scene: Scene) -> float:

@@ -22,7 +22,7 @@ How it runs:
   s): with c = 0.05 s the node forces at the samples gave 0.2 of the nodes' acceleration
   near the hang-off and the hang-off tension amplitude came out 5 % low, flat over the
   top 120 m; given every step, force / mass matches the acceleration within 0.5 %.
-- **Motion**: d(t) of :func:`vfife.dynamics.top_displacement` (A sin(2 pi t / T) times the
+- **Motion**: d(t) of :func:`riser.hang_off_motion.axis_displacement` (A sin(2 pi t / T) times the
   half-cosine ramp), given at t_k = k dt as x_k = top + d(t_k) e and v_k = (d(t_k + dt) -
   d(t_k)) / dt e, the central difference of d at the step's midpoint: the path is the
   continuous piecewise-linear interpolant of d(t) at the steps (the analytic d'(t_k)
@@ -63,9 +63,9 @@ from pathlib import Path
 import numpy as np
 
 from riser.errors import SceneError
+from riser.hang_off_motion import axis_displacement
 from riser.scene import Scene
 from verification.comparison.harmonics import fit
-from vfife.dynamics import top_displacement
 
 from .run import (SETTLE_TIME, SPEED_TOL, STEP_FRACTION, _profile, _to_log, close,
                   coupled_statics as _statics, require)
@@ -157,7 +157,7 @@ def run_harmonic(scene: Scene, folder, *, segment_length: float = 10.0, profile=
 
     def take(t: float) -> None:
         p = _profile(moordyn, lines, files.scene, files, info)
-        d3 = top_displacement(scene, np.array([t - dt, t, t + dt]))
+        d3 = axis_displacement(scene, np.array([t - dt, t, t + dt]))
         acc = (d3[0] - 2.0 * d3[1] + d3[2]) / dt ** 2 * axis
         force = np.array(moordyn.GetLineNodeForce(end, n_end))
         mass = np.array(moordyn.GetLineNodeM(end, n_end))
@@ -185,7 +185,7 @@ def run_harmonic(scene: Scene, folder, *, segment_length: float = 10.0, profile=
                 end = lines[-1]
             for j in range(n_samples):
                 tj = (j * per_sample + np.arange(per_sample + 1)) * dt
-                d = top_displacement(scene, tj)
+                d = axis_displacement(scene, tj)
                 for i in range(per_sample):
                     moordyn.Step(system, list(top + d[i] * axis),
                                  list((d[i + 1] - d[i]) / dt * axis), clock + tj[i], dt)
@@ -211,7 +211,7 @@ def _arrays(out: dict, scene) -> dict:
     for key in ("hang_off_segment_tension", "hang_off_force"):
         out[key] = np.asarray(out[key], float)
     out["hang_off_tension"] = out["tension"][:, -1] if n else np.zeros(0)
-    out["hang_off_displacement"] = top_displacement(scene, out["t"])
+    out["hang_off_displacement"] = axis_displacement(scene, out["t"])
     if out["stable"] and not np.all(np.isfinite(out["tension"])):
         out.update(stable=False, message="MoorDyn's state holds NaN/inf")
     return out

@@ -118,7 +118,7 @@ def run_waves(scene: Scene, folder, *, segment_length: float = 10.0, profile=Non
     import cmoordyn
     import moordyn
 
-    from riser.hang_off_motion import hang_off_displacement
+    from riser.hang_off_motion import HangOffPath, scene_components
     from riser.waves import elevation
 
     say = log or (lambda msg: None)
@@ -142,8 +142,8 @@ def run_waves(scene: Scene, folder, *, segment_length: float = 10.0, profile=Non
         return _arrays(out)
     fixed = files.scene
     depth = fixed.water_depth
-    hang = fixed.ends.hang_off_point
-    comp = fixed.waves.components(depth, fixed.gravity, (hang[0], hang[2]))
+    comp = scene_components(fixed)
+    path = HangOffPath(fixed)
     plain = dataclasses.replace(comp, ramp_time=0.0)
     if sample is None:
         sample = (dyn.output_interval if dyn is not None and dyn.output_interval else
@@ -169,7 +169,7 @@ def run_waves(scene: Scene, folder, *, segment_length: float = 10.0, profile=Non
         p = _profile(moordyn, state["lines"], fixed, state["files"], {})
         end = state["lines"][-1]
         n_end = moordyn.GetLineN(end)
-        d3 = to_md(hang_off_displacement(fixed, np.array([t - dt, t, t + dt])).T)
+        d3 = to_md(path(np.array([t - dt, t, t + dt])).T)
         acc = (d3[0] - 2.0 * d3[1] + d3[2]) / dt ** 2
         force = np.array(moordyn.GetLineNodeForce(end, n_end))
         mass = np.array(moordyn.GetLineNodeM(end, n_end))
@@ -201,7 +201,7 @@ def run_waves(scene: Scene, folder, *, segment_length: float = 10.0, profile=Non
                     moordyn.GetWaves(state["system"]), ox, -oz, -0.5 * depth)[2])
             for j in range(n_samples):
                 tj = (j * per_sample + np.arange(per_sample + 1)) * dt
-                d = to_md(hang_off_displacement(fixed, tj).T)          # (m, 3) MoorDyn axes
+                d = to_md(path(tj).T)          # (m, 3) MoorDyn axes
                 for i in range(per_sample):
                     moordyn.Step(state["system"], list(top + d[i]),
                                  list((d[i + 1] - d[i]) / dt), tj[i], dt)
@@ -217,7 +217,7 @@ def run_waves(scene: Scene, folder, *, segment_length: float = 10.0, profile=Non
         close(state["system"], folder)
     out = _arrays(out)
     t = out["t"]
-    out["hang_off_displacement"] = hang_off_displacement(fixed, t)
+    out["hang_off_displacement"] = path(t)
     out["elevation_scene"] = (elevation(plain, ox, oz, t) if sea and t.size
                               else np.zeros_like(t))
     out["sea_elevation_difference"] = (float(np.max(np.abs(out["elevation"]
