@@ -32,6 +32,7 @@ import time
 import numpy as np
 
 from riser import validity
+from riser.design import checks as design_checks
 from riser.errors import UnsupportedSceneError
 from riser.frame import LinePlane
 from riser.internal_flow import wall_tension
@@ -220,6 +221,8 @@ def _solve(scene: Scene) -> SolveResult:
                  "epsilon": lam / outer.suspended, "delta": line.w * lam / H})
     if scene.internal_flow is not None:
         profile.wall_tension = wall_tension(scene, profile.s, profile.y, profile.tension)
+    if scene.design is not None:
+        design_checks.apply(scene, profile)           # stresses, utilisation (riser/design)
     bad = validity.nonfinite(profile)
     if bad:
         return result(Status.DIVERGED, bad)

@@ -44,6 +44,7 @@ import time
 import numpy as np
 
 from riser import validity
+from riser.design import checks as design_checks
 from riser.internal_flow import wall_tension
 from riser.result import SolveResult, Status
 from riser.scene import FixedEnds, HangOffAngleEnds, Scene, TopTensionEnds
@@ -190,6 +191,8 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
             # steady flow: no term in the shape equations (T is Fylling's effective
             # tension), one in the wall tension (riser/internal_flow.py)
             profile.wall_tension = wall_tension(scene, profile.s, profile.y, profile.tension)
+        if scene.design is not None:
+            design_checks.apply(scene, profile)       # stresses, utilisation (riser/design)
     except BVPFailure as exc:
         return result(Status.NOT_CONVERGED, str(exc))
     info.update(checks)

@@ -25,6 +25,9 @@ MAX_LINE_LOAD = 1.0e5
 MAX_STIFFNESS = 1.0e14
 #: the range of Young's and the shear modulus [Pa]
 MODULUS = (1.0e6, 1.0e13)
+#: the range of a wall's yield and tensile strength [Pa] (10 MPa to 5 GPa: MPa typed as Pa
+#: and Pa typed as kPa both fall outside)
+MATERIAL_STRENGTH = (1.0e7, 5.0e9)
 
 BORE = "wall_thickness or inner_diameter"
 
@@ -79,6 +82,13 @@ class LineType(Part):
                              doc="axial strain T/EA beyond which a result carries a warning")
     compression: bool = spec(True, "boolean", doc="false for a line that cannot carry "
                                                   "effective compression (chain, rope)")
+    yield_strength: float | None = spec(None, gt=MATERIAL_STRENGTH[0],
+                                        le=MATERIAL_STRENGTH[1], unit="Pa",
+                                        also="<= tensile_strength",
+                                        doc="SMYS of the wall: [design] checks")
+    tensile_strength: float | None = spec(None, gt=MATERIAL_STRENGTH[0],
+                                          le=MATERIAL_STRENGTH[1], unit="Pa",
+                                          doc="SMTS of the wall: DNV's check")
 
     def __post_init__(self) -> None:
         check_fields(self)
@@ -86,6 +96,10 @@ class LineType(Part):
         d = self.inner_diameter
         if d is not None:
             check_bore(self.outer_diameter, d, error)
+        fy, fu = self.yield_strength, self.tensile_strength
+        if fy is not None and fu is not None and fy > fu:
+            raise error("yield_strength", f"must be <= tensile_strength {fu:g} Pa (SMYS "
+                        f"above SMTS), got {fy:g}")
         if self.contents_density > 0.0 and d is None:
             raise error("contents_density", "needs inner_diameter or wall_thickness (the "
                         "bore that holds the contents)")

@@ -25,7 +25,8 @@ import numpy as np
 
 PROFILE_COLUMNS = ("s", "x", "y", "z", "tension", "moment", "shear", "curvature", "angle_deg")
 #: the columns a profile carries only where they apply, after PROFILE_COLUMNS in this order
-OPTIONAL_COLUMNS = ("wall_tension", "lateral", "moment_in_plane", "moment_out_of_plane")
+OPTIONAL_COLUMNS = ("wall_tension", "lateral", "moment_in_plane", "moment_out_of_plane",
+                    "stress_axial", "stress_bending", "stress_hoop", "von_mises", "utilisation")
 
 
 @dataclass
@@ -33,7 +34,10 @@ class Profile:
     """Static configuration and internal forces sampled along the line (arrays of shape (n,)).
 
     ``tdp_s`` is the arc length of the touchdown point [m] (None for a free-hanging line);
-    ``wall_tension`` [N] is set for scenes with internal flow only.
+    ``wall_tension`` [N] is set for scenes with internal flow or a [design]; the design
+    columns (``stress_axial``, ``stress_bending``, ``stress_hoop``, ``von_mises`` [Pa],
+    ``utilisation`` [-]) and ``design_code`` for a scene with a [design] only
+    (:mod:`riser.design.checks`).
     """
 
     s: np.ndarray
@@ -50,6 +54,12 @@ class Profile:
     lateral: np.ndarray | None = None
     moment_in_plane: np.ndarray | None = None
     moment_out_of_plane: np.ndarray | None = None
+    stress_axial: np.ndarray | None = None
+    stress_bending: np.ndarray | None = None
+    stress_hoop: np.ndarray | None = None
+    von_mises: np.ndarray | None = None
+    utilisation: np.ndarray | None = None
+    design_code: str | None = None
 
     def __post_init__(self) -> None:
         for name in ("s", "x", "y", "z", "theta", "tension", "moment", "shear", "curvature"):
@@ -200,6 +210,14 @@ def summarize(profile: Profile) -> dict:
         out["max_wall_tension"] = float(np.max(profile.wall_tension))
     if profile.is_3d:
         out.update(lateral_summary(profile))
+    if profile.utilisation is not None:
+        iu, iv = int(np.argmax(profile.utilisation)), int(np.argmax(profile.von_mises))
+        out.update({"design_code": profile.design_code,
+                    "max_utilisation": float(profile.utilisation[iu]),
+                    "max_utilisation_s": float(s[iu]),
+                    "max_von_mises": float(profile.von_mises[iv]),
+                    "max_von_mises_s": float(s[iv]),
+                    "design_passes": bool(profile.utilisation[iu] <= 1.0)})
     return out
 
 

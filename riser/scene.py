@@ -21,6 +21,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
+from .design.part import Design, check_design
 from .dynamics import Dynamics, TopMotion
 from .ends import (
     END_FORMS,
@@ -113,6 +114,7 @@ class Scene:
     seabed: Seabed | None = spec(None, "part", part=Seabed)
     dynamics: Dynamics | None = spec(None, "part", part=Dynamics)
     internal_flow: InternalFlow | None = spec(None, "part", part=InternalFlow)
+    design: Design | None = spec(None, "part", part=Design)
     bvp: BVPSettings = spec(kind="part", part=BVPSettings, default_factory=BVPSettings)
     analytic: AnalyticSettings = spec(kind="part", part=AnalyticSettings,
                                       default_factory=AnalyticSettings)
@@ -142,6 +144,7 @@ class Scene:
         self._check_current()
         self._check_top_motion()
         check_sea_state(self)
+        check_design(self)
 
     def error(self, key: str, message: str) -> SceneError:
         """A SceneError of this scene's source naming ``key``."""

@@ -17,6 +17,7 @@ import dataclasses
 import sys
 from pathlib import Path
 
+from .design.part import Design, Fatigue, SeaState
 from .dynamics import Dynamics, TopMotion
 from .ends import FILE_KEYS as ENDS_FILE_KEYS
 from .ends import FixedEnds, HangOffAngleEnds, TdpTensionEnds, TopTensionEnds
@@ -77,6 +78,9 @@ def _tables() -> list[tuple[str, list]]:
         ("[vessel]", _rows(Vessel)),
         ("[[vessel.raos]]", _rows(RAOTable)),
         ("[internal_flow]", _rows(InternalFlow)),
+        ("[design]", _rows(Design)),
+        ("[design.fatigue]", _rows(Fatigue)),
+        ("[[design.fatigue.sea_states]]", _rows(SeaState)),
         (f"[internal_flow.{SLUG}]", _rows(InternalFlow, SLUG)),
         ("[bvp]", _rows(BVPSettings)),
         ("[analytic]", _rows(AnalyticSettings)),

@@ -198,7 +198,29 @@ def expected_scene(data: dict) -> dict:
         "density_amplitude": flow.get("slug", {}).get("density_amplitude", 0.0),
         "slug_length": flow.get("slug", {}).get("slug_length"),
         "phase_deg": flow.get("slug", {}).get("phase_deg", 0.0)}
+    out["design"] = expected_design(data.get("design"))
     return out
+
+
+def expected_design(d: dict | None) -> dict | None:
+    """[design], [design.fatigue] and its sea states with the documented defaults."""
+    if d is None:
+        return None
+    f = d.get("fatigue")
+    fatigue = None if f is None else {
+        "sn_curve": f.get("sn_curve", "D"), "environment": f.get("environment", "seawater-cp"),
+        "scf": f.get("scf", 1.0), "points": f.get("points", 16),
+        "thickness": f.get("thickness"),
+        "design_fatigue_factor": f.get("design_fatigue_factor", 1.0),
+        "sea_states": tuple({"hs": c["hs"], "tp": c["tp"], "probability": c["probability"]}
+                            for c in f.get("sea_states", []))}
+    return {"code": d.get("code", "dnv-st-f201"), "safety_class": d.get("safety_class", "normal"),
+            "load_class": d.get("load_class", "operating"), "gamma_f": d.get("gamma_f", 1.1),
+            "gamma_e": d.get("gamma_e", 1.3), "gamma_m": d.get("gamma_m", 1.15),
+            "alpha_u": d.get("alpha_u", 0.96), "alpha_fab": d.get("alpha_fab", 1.0),
+            "ovality": d.get("ovality", 0.005),
+            "corrosion_allowance": d.get("corrosion_allowance", 0.0),
+            "internal_pressure": d.get("internal_pressure"), "fatigue": fatigue}
 
 
 def _numbers(v):
@@ -255,7 +277,9 @@ def expected_line_type(name: str, t: dict) -> dict:
             "contents_density": t.get("contents_density", 0.0),
             "hydro_diameter": t.get("hydro_diameter"),
             "submerged_weight": t.get("submerged_weight"),
-            "max_strain": t.get("max_strain", 0.01), "compression": t.get("compression", True)}
+            "max_strain": t.get("max_strain", 0.01), "compression": t.get("compression", True),
+            "yield_strength": t.get("yield_strength"),
+            "tensile_strength": t.get("tensile_strength")}
 
 
 def expected_dynamics(dyn: dict) -> dict:

@@ -68,13 +68,14 @@ class Recorder:
     """
 
     def __init__(self, s: np.ndarray, start: float, save_states: bool, has_seabed: bool,
-                 elevation=None, irregular: bool = False):
+                 elevation=None, irregular: bool = False, design=None):
         self.s = np.asarray(s, float)
         self.start = float(start)
         self.save_states = save_states
         self.has_seabed = has_seabed
         self.elevation = elevation
         self.irregular = irregular
+        self.design = design                      # riser.design.dynamic.DynamicDesign
         self.times: list[float] = []              # the window's sample times
         n = len(self.s)
         self.columns = TIMESERIES + (("wave_elevation",) if elevation is not None else ())
@@ -107,8 +108,13 @@ class Recorder:
                "max_moment_s": self.s[i_mom], "kinetic_energy": ke}
         if self.elevation is not None:
             row["wave_elevation"] = self.elevation(t)
-        if t >= self.start - 1e-9:
+        window = t >= self.start - 1e-9
+        if window:
             self._window(row, T, M, K, y)
+        if self.design is not None:
+            # the line's bending moment EI t x t' is minus the nodal moment vector
+            self.design.sample(t, model.positions(), model.directors(), T,
+                               -r["moment_vector"].T, window)
         if record:
             for k in self.columns:
                 self.ts[k].append(float(row[k]))
@@ -165,6 +171,8 @@ class Recorder:
             mean = self.sums[q] / n
             out[f"{key}_mean"] = mean
             out[f"{key}_std"] = np.sqrt(np.maximum(self.sums[q + "2"] / n - mean * mean, 0.0))
+        if self.design is not None:
+            out.update(self.design.envelope())
         return out
 
     def states_arrays(self) -> dict | None:
@@ -194,6 +202,8 @@ class Recorder:
             st["max_tension"], st["max_tension_s"] = float(self.env["tension_max"][j]), float(
                 self.s[j])
         out.update({f"dynamic_{k}": v for k, v in st.items()})
+        if self.design is not None:
+            out.update(self.design.statistics())
         return out
 
 

@@ -35,6 +35,7 @@ from enum import StrEnum
 import numpy as np
 
 from riser.callbacks import with_fraction
+from riser.design.dynamic import DynamicDesign
 from riser.hang_off_motion import HangOffPath, scene_components
 
 from .dynamic_outputs import Recorder
@@ -157,7 +158,8 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
         else min(max(dyn.statistics_from, scene.waves.ramp), 0.5 * dyn.duration)
     rec = Recorder(mesh.s, start, dyn.save_states, scene.seabed is not None,
                    elevation=elevation, irregular=bool(scene.waves is not None
-                                                       and scene.waves.spectrum is not None))
+                                                       and scene.waves.spectrum is not None),
+                   design=DynamicDesign(scene, mesh.s) if scene.design is not None else None)
     # what a blow-up message names as its likely cause
     cause = {"critical_steps": steps, "time_step": dt,
              "emerging": model.use_surface and not emerge}

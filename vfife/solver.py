@@ -9,6 +9,7 @@ import time
 import numpy as np
 
 from riser import validity
+from riser.design import checks as design_checks
 from riser.errors import UnsupportedSceneError
 from riser.frame import LinePlane, elevation, plane_columns
 from riser.internal_flow import wall_tension
@@ -143,12 +144,15 @@ def make_profile(model: Model, scene: Scene) -> Profile:
         # the BVP's m) is its opposite
         lateral, inplane, oop = plane_columns(plane, X[:, 0], X[:, 2], D,
                                               -r["moment_vector"].T)
-    return Profile(s=model.mesh.s.copy(), x=X[:, 0], y=X[:, 1], z=X[:, 2], theta=theta,
-                   tension=r["tension"], moment=r["moment"], shear=r["shear"],
-                   curvature=r["curvature"],
-                   tdp_s=touchdown_s(model.mesh.s, X[:, 1], scene.seabed is not None),
-                   wall_tension=wall, lateral=lateral, moment_in_plane=inplane,
-                   moment_out_of_plane=oop)
+    profile = Profile(s=model.mesh.s.copy(), x=X[:, 0], y=X[:, 1], z=X[:, 2], theta=theta,
+                      tension=r["tension"], moment=r["moment"], shear=r["shear"],
+                      curvature=r["curvature"],
+                      tdp_s=touchdown_s(model.mesh.s, X[:, 1], scene.seabed is not None),
+                      wall_tension=wall, lateral=lateral, moment_in_plane=inplane,
+                      moment_out_of_plane=oop)
+    if scene.design is not None:
+        design_checks.apply(scene, profile)           # stresses, utilisation (riser/design)
+    return profile
 
 
 def solve(scene: Scene, *, element_length: float | None = None, tolerance: float | None = None,

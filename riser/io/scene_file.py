@@ -20,6 +20,7 @@ import stat
 import tomllib
 from pathlib import Path
 
+from ..design.part import Design, Fatigue, SeaState
 from ..ends import FILE_KEYS as ENDS_FILE_KEYS
 from ..ends import FixedEnds, HangOffAngleEnds, TdpTensionEnds, TopTensionEnds
 from ..errors import SceneError
@@ -183,6 +184,9 @@ def scene_from_dict(data: dict, source: str = "<scene>") -> Scene:
     if flow_t is not None:
         values["internal_flow"] = _read_sub_tables(flow_t, InternalFlow, required={
             "slug": ("density_amplitude", "slug_length")})
+    design_t = root.table("design")
+    if design_t is not None:
+        values["design"] = _read_design(design_t)
     model_t = root.table("model")
     if model_t is not None:
         values["model"] = {key: model_t.value(key, sp) for key, sp in MODEL_KEYS.items()
@@ -358,6 +362,19 @@ def _read_vessel(t: Table) -> Vessel:
     values["raos"] = tuple(_read_part(r, RAOTable) for r in t.array_of_tables("raos"))
     t.finish()
     return t.build(Vessel, **values)
+
+
+def _read_design(t: Table) -> Design:
+    """[design], its [design.fatigue] and [[design.fatigue.sea_states]]."""
+    values = t.fields(Design)
+    fat = t.table("fatigue")
+    if fat is not None:
+        cells = tuple(_read_part(c, SeaState)
+                      for c in fat.array_of_tables("sea_states", required=False))
+        values["fatigue"] = fat.build(Fatigue, **fat.fields(Fatigue), sea_states=cells)
+        fat.finish()
+    t.finish()
+    return t.build(Design, **values)
 
 
 def _read_dynamics(t: Table) -> Dynamics:

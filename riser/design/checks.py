@@ -1,0 +1,101 @@
+"""The design checks of a result: stresses and the code's utilisation along the line
+(static profile, and per sample of a dynamic run through :mod:`riser.design.dynamic`).
+
+Load effects. A static result is all functional: M_d = gamma_F |M|, T_ed = gamma_F T_e.
+In a dynamic run (or a frequency-domain response) the functional part is the static state
+and the environmental part the increment over it: M_d = |gamma_F M_F + gamma_E (M -
+M_F)| (moment vectors across the tangent: in-plane and out-of-plane components),
+T_ed = gamma_F T_F + gamma_E (T - T_F) (effective tensions). API's von Mises check takes
+the stresses unfactored. The pressures follow the line's heights (the sea's and the
+contents' heads at the instantaneous y).
+
+Columns (profile.csv with [design]; SI): ``wall_tension`` [N], ``stress_axial`` T_w /
+A_s, ``stress_bending`` M r_o / I, ``stress_hoop`` (inner surface), ``von_mises`` (the
+largest over the section) [Pa] and ``utilisation`` [-] (:data:`COLUMNS`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import api_2rd, dnv_f201
+from .wall import pressures, stresses, wall_at, wall_tension
+
+#: the profile columns of the design checks, after ``wall_tension``
+COLUMNS = ("stress_axial", "stress_bending", "stress_hoop", "von_mises", "utilisation")
+#: what each code's utilisation is, for reports
+CODE_TITLES = {"dnv-st-f201": "DNV-ST-F201 LRFD combined loading",
+               "api-rp-2rd": "API RP 2RD von Mises (C_f C_a SMYS)"}
+
+
+def utilisation(design, wall, p_i, p_e, M_d, T_ed, von_mises) -> np.ndarray:
+    """The code's utilisation: DNV's from the design loads M_d [N m], T_ed [N] and the
+    pressures [Pa], API's from the (unfactored) von Mises stress [Pa]."""
+    if design.code == "dnv-st-f201":
+        return dnv_f201.utilisation(design, wall, p_i, p_e, M_d, T_ed)
+    return api_2rd.utilisation(design, wall, von_mises)
+
+
+def static_columns(scene, s, y, tension, moment) -> dict:
+    """The design columns of a static profile (arc lengths ``s`` [m] of ``scene``,
+    heights ``y`` [m] with the hang-off last, effective tension [N], moment magnitude
+    [N m]): ``wall_tension`` and :data:`COLUMNS`."""
+    y = np.asarray(y, float)
+    wall = wall_at(scene, s)
+    p_i, p_e = pressures(scene, wall, y, float(y[-1]))
+    tw = wall_tension(scene, wall, tension, p_i, p_e)
+    st = stresses(wall, tw, moment, p_i, p_e)
+    g = scene.design.gamma_f
+    u = utilisation(scene.design, wall, p_i, p_e, g * np.abs(moment),
+                    g * np.asarray(tension, float), st.von_mises)
+    return {"wall_tension": tw, "stress_axial": st.axial, "stress_bending": st.bending,
+            "stress_hoop": st.hoop, "von_mises": st.von_mises, "utilisation": u}
+
+
+def apply(scene, profile) -> None:
+    """Set the design columns of ``profile`` (a :class:`riser.profile.Profile` of
+    ``scene``, which has a [design]) in place."""
+    cols = static_columns(scene, profile.s, profile.y, profile.tension, profile.moment)
+    for name, values in cols.items():
+        setattr(profile, name, values)
+    profile.design_code = scene.design.code
+
+
+def peak(s, values) -> tuple[float, float]:
+    """(largest value, its arc length) of ``values`` along ``s``."""
+    i = int(np.nanargmax(values))
+    return float(values[i]), float(s[i])
+
+
+def summary(design, s, utilisation_values, von_mises_values, prefix: str = "") -> dict:
+    """summary.json's design figures: the code, the largest utilisation and von Mises
+    stress [Pa] and where [m], and whether the line passes (utilisation <= 1)."""
+    u, u_s = peak(s, utilisation_values)
+    vm, vm_s = peak(s, von_mises_values)
+    return {f"{prefix}design_code": design.code, f"{prefix}max_utilisation": u,
+            f"{prefix}max_utilisation_s": u_s, f"{prefix}max_von_mises": vm,
+            f"{prefix}max_von_mises_s": vm_s, f"{prefix}design_passes": bool(u <= 1.0)}
+
+
+def amplitude_columns(scene, s, y, tension, moment, tension_amp, moment_amp) -> dict:
+    """The design columns of a frequency-domain response: the static state (effective
+    tension [N], moment magnitude [N m] at stations ``s`` [m], heights ``y`` [m]) plus
+    dynamic amplitudes (``tension_amp`` [N], ``moment_amp`` [N m]: a harmonic's, or a
+    sea's most probable maxima) combined in phase at the worse sign (phases are not
+    combined: an upper bound of the cycle's largest value). DNV: M_d = gamma_F |M| +
+    gamma_E M_amp, T_ed the larger |gamma_F T +- gamma_E T_amp|; API: von Mises of the
+    larger wall tension and the moment |M| + M_amp. Returns ``von_mises`` [Pa] and
+    ``utilisation`` [-]."""
+    y = np.asarray(y, float)
+    wall = wall_at(scene, s)
+    p_i, p_e = pressures(scene, wall, y, float(y[-1]))
+    d = scene.design
+    T, M = np.asarray(tension, float), np.abs(np.asarray(moment, float))
+    dT, dM = np.abs(np.asarray(tension_amp, float)), np.abs(np.asarray(moment_amp, float))
+    tw = wall_tension(scene, wall, T, p_i, p_e)
+    vm = np.maximum(stresses(wall, tw + dT, M + dM, p_i, p_e).von_mises,
+                    stresses(wall, tw - dT, M + dM, p_i, p_e).von_mises)
+    t_ed = np.maximum(np.abs(d.gamma_f * T + d.gamma_e * dT),
+                      np.abs(d.gamma_f * T - d.gamma_e * dT))
+    u = utilisation(d, wall, p_i, p_e, d.gamma_f * M + d.gamma_e * dM, t_ed, vm)
+    return {"von_mises": vm, "utilisation": u}

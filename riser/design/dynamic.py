@@ -1,0 +1,117 @@
+"""The design checks of a dynamic run, sample by sample (:class:`DynamicDesign`): the
+largest utilisation and von Mises stress along the line over the statistics window, and
+the record of wall tension and moment components that fatigue counts
+(:func:`riser.design.fatigue.time_domain`).
+
+A method's recorder calls :meth:`DynamicDesign.sample` with its state (positions,
+tangents, effective tension and bending-moment vectors at its stations, SI); the first
+call is the static state, the functional load effect of the checks
+(:mod:`riser.design.checks`). The moment vectors are resolved across the tangent into the
+in-plane and out-of-plane components of :mod:`riser.frame` (the line's plane through its
+ends).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..frame import LinePlane, plane_columns
+from .checks import utilisation
+from .fatigue import time_domain
+from .wall import pressures, stresses, wall_at, wall_tension
+
+
+class DynamicDesign:
+    """Design checks over a dynamic run at stations ``s`` [m] of ``scene`` (which has a
+    [design]); with ``[design.fatigue]`` it keeps the window's record (wall tension [N],
+    in-plane and out-of-plane moments [N m] at every station and sample)."""
+
+    def __init__(self, scene, s):
+        self.scene, self.design = scene, scene.design
+        self.s = np.asarray(s, float)
+        self.wall = wall_at(scene, self.s)
+        self.plane = LinePlane.of(scene)
+        self.static = None
+        n = len(self.s)
+        self.u_max = np.full(n, -np.inf)
+        self.vm_max = np.full(n, -np.inf)
+        self.peak = {"utilisation": -np.inf, "von_mises": -np.inf}
+        self.where: dict = {}
+        self.keep = self.design.fatigue is not None
+        self.record: list[np.ndarray] = []
+        self.times: list[float] = []
+
+    def components(self, x, tangents, moment_vectors):
+        """(M_in, M_out) [N m] of bending-moment vectors (n, 3) at stations with positions
+        ``x`` (n, 3) and unit tangents (n, 3) (:func:`riser.frame.plane_columns`)."""
+        _, m_in, m_out = plane_columns(self.plane, x[:, 0], x[:, 2], tangents, moment_vectors)
+        return m_in, m_out
+
+    def sample(self, t: float, x, tangents, tension, moment_vectors, window: bool) -> None:
+        """Take a state at time ``t`` [s]: positions x (n, 3) [m], unit tangents (n, 3),
+        effective tension (n,) [N], bending-moment vectors (n, 3) [N m] (the line's,
+        EI t x t'); ``window``: inside the statistics window."""
+        T = np.asarray(tension, float)
+        m_in, m_out = self.components(np.asarray(x, float), tangents, moment_vectors)
+        if self.static is None:
+            self.static = (T.copy(), m_in.copy(), m_out.copy())
+        if not window:
+            return
+        y = np.asarray(x, float)[:, 1]
+        wall, d = self.wall, self.design
+        p_i, p_e = pressures(self.scene, wall, y, float(y[-1]))
+        tw = wall_tension(self.scene, wall, T, p_i, p_e)
+        st = stresses(wall, tw, np.hypot(m_in, m_out), p_i, p_e)
+        T_f, in_f, out_f = self.static
+        g_f, g_e = d.gamma_f, d.gamma_e
+        m_d = np.hypot(g_f * in_f + g_e * (m_in - in_f), g_f * out_f + g_e * (m_out - out_f))
+        t_ed = g_f * T_f + g_e * (T - T_f)
+        u = utilisation(d, wall, p_i, p_e, m_d, t_ed, st.von_mises)
+        np.maximum(self.u_max, u, out=self.u_max)
+        np.maximum(self.vm_max, st.von_mises, out=self.vm_max)
+        for key, values in (("utilisation", u), ("von_mises", st.von_mises)):
+            i = int(np.argmax(values))
+            if values[i] > self.peak[key]:
+                self.peak[key] = float(values[i])
+                self.where[key] = (float(self.s[i]), float(t))
+        if self.keep:
+            self.record.append(np.stack([tw, m_in, m_out]))
+            self.times.append(float(t))
+
+    def envelope(self) -> dict:
+        """Envelope columns along s: ``utilisation_max`` [-], ``von_mises_max`` [Pa], and
+        with fatigue those of :func:`riser.design.fatigue.time_domain`."""
+        out = {"utilisation_max": self.u_max.copy(), "von_mises_max": self.vm_max.copy()}
+        fat = self.fatigue()
+        if fat is not None:
+            out.update({k: v for k, v in fat.items() if np.ndim(v) == 1})
+        return out
+
+    def fatigue(self) -> dict | None:
+        """The time-domain fatigue of the window's record (None without
+        ``[design.fatigue]`` or with fewer than 3 samples); computed once."""
+        if not self.keep or len(self.times) < 3:
+            return None
+        if getattr(self, "_fatigue", None) is None:
+            rec = np.asarray(self.record)                     # (k, 3, n)
+            duration = self.times[-1] - self.times[0]
+            self._fatigue = time_domain(self.scene, self.s, rec[:, 0], rec[:, 1], rec[:, 2],
+                                        duration)
+        return self._fatigue
+
+    def statistics(self) -> dict:
+        """summary.json's ``dynamic_`` design figures: the largest utilisation and von
+        Mises stress [Pa], where [m] and when [s], whether the line passes; with fatigue
+        the worst station's damage over the record and its life [years]."""
+        out = {"dynamic_design_code": self.design.code}
+        for key in ("utilisation", "von_mises"):
+            if key in self.where:
+                s, t = self.where[key]
+                out.update({f"dynamic_max_{key}": self.peak[key],
+                            f"dynamic_max_{key}_s": s, f"dynamic_max_{key}_time": t})
+        if "utilisation" in self.where:
+            out["dynamic_design_passes"] = bool(self.peak["utilisation"] <= 1.0)
+        fat = self.fatigue()
+        if fat is not None:
+            out.update({f"dynamic_{k}": v for k, v in fat.items() if np.ndim(v) == 0})
+        return out

@@ -1,0 +1,154 @@
+"""The scene table ``[design]``: which code checks the line, with which factors, and how
+its fatigue is assessed (``[design.fatigue]``, a scatter diagram of sea states in
+``[[design.fatigue.sea_states]]``). The wall and the material (outer and inner diameter,
+SMYS ``yield_strength``, SMTS ``tensile_strength``) are the line types'.
+
+Codes (their formulas, clause by clause: :mod:`riser.design.dnv_f201`,
+:mod:`riser.design.api_2rd`):
+
+- ``dnv-st-f201``: the LRFD combined-loading criterion of DNV-OS-F201 (2010) Sec. 5 D 200
+  (kept by DNV-ST-F201, 2018) with the safety class's resistance factor gamma_SC (Table
+  5-3), the material factor gamma_m (Table 5-4) and the load-effect factors gamma_F,
+  gamma_E (Table 5-2, load combination a); the functional load effect is the static
+  state, the environmental one the dynamic part (the run's value minus the static);
+- ``api-rp-2rd``: the von Mises stress against C_f C_a SMYS (API RP 2RD, 1998, Sec. 4.4,
+  C_a = 2/3, C_f by the load class of its Table 2).
+
+Pressures (gauge, [Pa]): outside the sea's rho_w g (h - y); inside the contents' design
+pressure ``internal_pressure`` at the hang-off plus their hydrostatic head rho_c g
+(y_top - y).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from ..spec import Part, check_fields, part_error, spec
+from .sn_curves import CURVE_NAMES, ENVIRONMENTS
+
+CODES = ("dnv-st-f201", "api-rp-2rd")
+SAFETY_CLASSES = ("low", "normal", "high")
+#: API RP 2RD's load classes (its Table 2), each with its design case factor C_f
+LOAD_CLASSES = ("operating", "extreme", "temporary", "survival", "test")
+#: the scatter diagram's probabilities sum to 1 within this (a table of rounded entries)
+PROBABILITY_SUM_TOLERANCE = 1e-3
+FATIGUE = "fatigue"
+
+
+@dataclass(frozen=True)
+class SeaState(Part):
+    """One cell of a scatter diagram: the scene's wave spectrum at this Hs and Tp, for
+    ``probability`` of the time."""
+
+    hs: float = spec(gt=0.0, le=30.0, unit="m", doc="significant wave height")
+    tp: float = spec(gt=1.0, le=40.0, unit="s", doc="spectral peak period")
+    probability: float = spec(gt=0.0, le=1.0, doc="fraction of the time in this sea state")
+
+
+@dataclass(frozen=True)
+class Fatigue(Part):
+    """``[design.fatigue]``: the S-N curve of the weld (DNV-RP-C203), its stress
+    concentration, the points around the circumference, the design fatigue factor and the
+    scatter diagram (``sea_states``, read from ``[[design.fatigue.sea_states]]``)."""
+
+    sn_curve: str = spec("D", "string", choices=CURVE_NAMES,
+                         doc="DNV-RP-C203 S-N curve class of the detail")
+    environment: str = spec("seawater-cp", "string", choices=ENVIRONMENTS,
+                            doc="S-N curve set: in air, in seawater with cathodic "
+                                "protection, or free corrosion")
+    scf: float = spec(1.0, ge=1.0, le=10.0, doc="stress concentration factor on the "
+                                                 "nominal stress range")
+    points: int = spec(16, "integer", ge=8, le=360,
+                       doc="stress points equally spaced around the outer fibre")
+    thickness: float | None = spec(None, gt=0.0, le=0.5, unit="m", default_doc="the wall's",
+                                   doc="thickness of the S-N curve's thickness correction")
+    design_fatigue_factor: float = spec(1.0, ge=1.0, le=100.0,
+                                        doc="DFF: the allowable life is the life / DFF")
+    sea_states: tuple[SeaState, ...] = field(default=())
+
+    def __post_init__(self) -> None:
+        check_fields(self)
+        error = part_error(self)
+        if isinstance(self.sea_states, list):
+            object.__setattr__(self, "sea_states", tuple(self.sea_states))
+        for i, cell in enumerate(self.sea_states):
+            if not isinstance(cell, SeaState):
+                raise error(f"sea_states[{i}]", f"must be a SeaState, got "
+                            f"{type(cell).__name__}")
+        if self.sea_states:
+            total = sum(c.probability for c in self.sea_states)
+            if abs(total - 1.0) > PROBABILITY_SUM_TOLERANCE:
+                raise error("sea_states", f"the probabilities must sum to 1 (within "
+                            f"{PROBABILITY_SUM_TOLERANCE:g}), got {total:.6g}")
+
+
+@dataclass(frozen=True)
+class Design(Part):
+    """``[design]``: the code check and its factors (see the module docstring); ``fatigue``
+    is read from ``[design.fatigue]``."""
+
+    code: str = spec("dnv-st-f201", "string", choices=CODES,
+                     doc="the code check: DNV's LRFD combined loading or API's von Mises")
+    safety_class: str = spec("normal", "string", choices=SAFETY_CLASSES,
+                             doc="DNV safety class: gamma_SC 1.04, 1.14, 1.26")
+    load_class: str = spec("operating", "string", choices=LOAD_CLASSES,
+                           doc="API load class: C_f 1.0, 1.2, 1.2, 1.5, 1.35")
+    gamma_f: float = spec(1.1, ge=1.0, le=3.0, doc="DNV load-effect factor on the "
+                                                   "functional (static) part")
+    gamma_e: float = spec(1.3, ge=1.0, le=3.0, doc="DNV load-effect factor on the "
+                                                   "environmental (dynamic) part")
+    gamma_m: float = spec(1.15, ge=1.0, le=3.0, doc="DNV material resistance factor")
+    alpha_u: float = spec(0.96, gt=0.5, le=1.0, doc="DNV material strength factor "
+                                                    "(1.0 with supplementary requirement U)")
+    alpha_fab: float = spec(1.0, gt=0.5, le=1.0, doc="DNV fabrication factor of the "
+                                                     "collapse check (0.93 UO, 0.85 UOE)")
+    ovality: float = spec(0.005, ge=0.0, le=0.05, doc="DNV initial out-of-roundness f0 "
+                                                      "(collapse)")
+    corrosion_allowance: float = spec(0.0, ge=0.0, le=0.1, unit="m",
+                                      doc="DNV t_corr: t2 = wall - t_corr in the "
+                                          "resistances")
+    internal_pressure: float | None = spec(None, ge=0.0, le=2.0e8, unit="Pa",
+                                           default_doc="[internal_flow] top_pressure, else 0",
+                                           doc="design pressure of the contents at the "
+                                               "hang-off (gauge)")
+    fatigue: Fatigue | None = spec(None, "part", part=Fatigue, table=FATIGUE)
+
+    def top_pressure(self, scene) -> float:
+        """The contents' gauge pressure at the hang-off [Pa]: ``internal_pressure``, else
+        the internal flow's ``top_pressure``, else 0."""
+        if self.internal_pressure is not None:
+            return self.internal_pressure
+        flow = getattr(scene, "internal_flow", None)
+        return flow.top_pressure if flow is not None else 0.0
+
+
+def check_design(scene) -> None:
+    """A scene with ``[design]`` has the wall and the material its checks need on every
+    line type (a bore, SMYS; SMTS for DNV) and a water depth (the sea pressure).
+    Raises :class:`~riser.errors.SceneError` naming the key."""
+    design = scene.design
+    if design is None:
+        return
+    err = scene.error
+    if scene.water_depth is None:
+        raise err("environment.water_depth", "required with [design] (the sea pressure "
+                  "on the wall)")
+    needs = ["inner_diameter", "yield_strength"]
+    if design.code == "dnv-st-f201":
+        needs.append("tensile_strength")
+    why = {"inner_diameter": "the wall: give inner_diameter or wall_thickness [m]",
+           "yield_strength": "the specified minimum yield strength SMYS [Pa]",
+           "tensile_strength": "the specified minimum tensile strength SMTS [Pa] of "
+                               "DNV's check"}
+    used = dict.fromkeys(seg.line_type for seg in scene.segments)
+    for name in used:
+        lt = scene.line_types[name]
+        for key in needs:
+            value = getattr(lt, key)
+            if value is None or value <= 0.0:
+                raise err(f"line_types.{name}.{key}", f"required by [design] "
+                          f"({why[key]})")
+        if design.corrosion_allowance >= 0.5 * (lt.outer_diameter - lt.inner_diameter):
+            raise err("design.corrosion_allowance", f"must be < the wall thickness "
+                      f"{0.5 * (lt.outer_diameter - lt.inner_diameter):g} m of line type "
+                      f"{name!r}, got {design.corrosion_allowance:g}")

@@ -1,0 +1,217 @@
+"""Design checks of dynamic runs and fatigue along the line (riser/design/dynamic.py,
+fatigue.py): the functional/environmental split by hand, the circumferential stress
+record's rainflow damage against n / N, the spectral damage along s against the
+narrow-band closed form, the turning-point reduction against the full count, and a VFIFE
+run with [design] (its envelope, its summary, and nothing of it without [design])."""
+
+from __future__ import annotations
+
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import vfife
+from riser.design import dnv_f201
+from riser.design.dynamic import DynamicDesign
+from riser.design.fatigue import (SECONDS_PER_YEAR, reversals, spectral, stress_transfer,
+                                  time_domain)
+from riser.design.rainflow_damage import cycles_of
+from riser.design.sn_curves import sn_curve
+from riser.design.spectral_fatigue import closed_form_narrow_band
+from riser.design.wall import wall_at
+from riser.io.scene_file import parse_scene
+
+LINE = """
+name = "design-dynamics"
+[environment]
+water_depth = 60.0
+[seabed]
+stiffness = 1.0e5
+[line_types.steel]
+outer_diameter = 0.2032
+wall_thickness = 0.0191
+density = 7860.0
+youngs_modulus = 2.06e11
+yield_strength = 4.48e8
+tensile_strength = 5.31e8
+[[segments]]
+line_type = "steel"
+length = 110.0
+[ends]
+anchor = [0.0, 0.0]
+hang_off = [80.0, 50.0]
+[design]
+"""
+FATIGUE = """
+[design.fatigue]
+sn_curve = "F"
+environment = "free-corrosion"
+scf = 1.3
+points = 8
+"""
+DYNAMICS = """
+[dynamics]
+duration = 12.0
+output_interval = 0.5
+[dynamics.top_motion]
+axis = "y"
+amplitude = 0.5
+period = 6.0
+"""
+
+
+def straight(n):
+    """Positions, tangents of a planar line along x (its in-plane moment is M_z)."""
+    x = np.zeros((n, 3))
+    x[:, 0] = np.arange(n, dtype=float)
+    x[:, 1] = 10.0
+    t = np.zeros((n, 3))
+    t[:, 0] = 1.0
+    return x, t
+
+
+def moments(mz):
+    m = np.zeros((len(mz), 3))
+    m[:, 2] = mz
+    return m
+
+
+def test_functional_and_environmental_split_by_hand():
+    sc = parse_scene(LINE)
+    s = np.array([10.0, 20.0, 30.0])
+    dd = DynamicDesign(sc, s)
+    x, t = straight(3)
+    T_f, M_f = np.array([4e5, 5e5, 6e5]), np.array([10e3, -20e3, 5e3])
+    dd.sample(0.0, x, t, T_f, moments(M_f), window=False)          # the static state
+    T, M = np.array([4.5e5, 4.0e5, 6.2e5]), np.array([25e3, -5e3, -8e3])
+    dd.sample(1.0, x, t, T, moments(M), window=True)
+    # by hand: M_d = |1.1 M_F + 1.3 (M - M_F)|, T_ed = 1.1 T_F + 1.3 (T - T_F); the
+    # pressures at y = 10 m with the hang-off (the last station) at the same height
+    m_d = np.abs(1.1 * M_f + 1.3 * (M - M_f))
+    t_ed = 1.1 * T_f + 1.3 * (T - T_f)
+    p_e = 1025.0 * 9.81 * 50.0
+    hand = dnv_f201.utilisation(sc.design, wall_at(sc, s), 0.0, p_e, m_d, t_ed)
+    np.testing.assert_allclose(dd.u_max, hand, rtol=1e-12)
+    stats = dd.statistics()
+    assert stats["dynamic_max_utilisation"] == pytest.approx(float(np.max(hand)), rel=1e-12)
+    assert stats["dynamic_max_utilisation_time"] == 1.0
+
+
+def test_reversals_keep_the_rainflow_cycles():
+    rng = np.random.default_rng(3)
+    x = np.round(np.cumsum(rng.normal(size=5000)), 1)      # rounded: plateaus and repeats
+    r_full, c_full = cycles_of(x)
+    r_red, c_red = cycles_of(reversals(x))
+    np.testing.assert_array_equal(r_full, r_red)
+    np.testing.assert_array_equal(c_full, c_red)
+    assert reversals(x).size < 0.8 * x.size
+
+
+def test_constant_amplitude_bending_gives_n_over_N():
+    # M = M0 cos(2 pi t / T) over n whole periods from a crest to a crest: n full cycles
+    # of the range 2 M0 r_o / I at the points phi = 0 and pi (the helper's exact case)
+    sc = parse_scene(LINE + FATIGUE)
+    s = np.array([50.0])
+    n_cycles, per = 7, 64
+    tt = np.linspace(0.0, n_cycles * 6.0, n_cycles * per + 1)
+    m0 = 30e3
+    m_in = (m0 * np.cos(2 * math.pi * tt / 6.0))[:, None]
+    tw = np.full_like(m_in, 5e5)
+    out = time_domain(sc, s, tw, m_in, np.zeros_like(m_in), float(tt[-1]))
+    w = wall_at(sc, s)
+    rng = 2 * m0 * 0.1016 / w.inertia[0]
+    curve = sn_curve("F", "free-corrosion")
+    expected = n_cycles / curve.cycles(rng, 0.0191, 1.3)
+    assert out["fatigue_damage"][0] == pytest.approx(float(expected), rel=1e-12)
+    assert out["fatigue_angle_deg"][0] in (0.0, 180.0)
+    assert out["fatigue_life"][0] == pytest.approx(tt[-1] / expected / SECONDS_PER_YEAR,
+                                                   rel=1e-12)
+
+
+def test_spectral_damage_of_a_single_component_is_the_narrow_band_closed_form():
+    # one wave component drives a moment amplitude: the stress at phi = 0 is a pure
+    # sinusoid of variance a^2 / 2, its spectrum one line; the narrow-band damage rate of
+    # a single-slope curve is nu0 (2 sqrt(2 m0))^m Gamma(1 + m/2) / a (Rayleigh ranges of
+    # a Gaussian process with that spectrum)
+    sc = parse_scene(LINE + FATIGUE)
+    s = np.array([50.0])
+    omega = np.array([0.5, 0.6, 0.7])
+    amp_m = np.zeros((3, 1), complex)
+    amp_m[1, 0] = 20e3
+    zero = np.zeros_like(amp_m)
+    q = stress_transfer(sc, s, zero, amp_m, zero, zero)
+    out = spectral(sc, s, omega, 0.1, q)
+    w = wall_at(sc, s)
+    sigma_amp = 20e3 * 0.1016 / w.inertia[0] * 1.3          # the SCF on the range
+    curve = sn_curve("F", "free-corrosion")
+    hand = closed_form_narrow_band(sigma_amp ** 2 / 2, 0.6 / (2 * math.pi), curve.m1,
+                                   curve.log_a1)
+    assert out["fatigue_rate_narrow_band"][0] == pytest.approx(hand, rel=1e-4)
+    # a line spectrum has gamma = 1: Dirlik tends to the narrow band
+    assert out["fatigue_rate_dirlik"][0] == pytest.approx(hand, rel=1e-2)
+
+
+def test_the_wall_tension_moves_with_the_heave():
+    # dT_w = g (rho_w A_o - rho_c A_i) dy: a metre of heave at no tension change
+    sc = parse_scene(LINE + FATIGUE)
+    s = np.array([50.0])
+    one = np.ones((1, 1), complex)
+    zero = np.zeros_like(one)
+    q = stress_transfer(sc, s, zero, zero, zero, one)
+    w = wall_at(sc, s)
+    expected = 9.81 * 1025.0 * w.outer_area[0] / w.area[0]
+    np.testing.assert_allclose(q[0, 0, :].real, expected, rtol=1e-12)
+
+
+def test_vfife_dynamic_run_with_design():
+    sc = parse_scene(LINE + FATIGUE + DYNAMICS)
+    res = vfife.solve(sc, element_length=2.0).require()
+    env, sm = res.dynamics.envelope, res.summary()
+    assert sm["dynamic_max_utilisation"] == pytest.approx(float(np.max(env["utilisation_max"])))
+    # the top motion adds to the static utilisation somewhere along the line
+    assert sm["dynamic_max_utilisation"] > sm["max_utilisation"]
+    assert np.all(np.isfinite(env["fatigue_damage"])) and sm["dynamic_max_fatigue_damage"] > 0
+    assert sm["dynamic_fatigue_record_s"] == pytest.approx(sm["statistics_end"]
+                                                           - sm["statistics_start"], abs=0.5)
+    # effects on demand: without [design] no design columns, no design keys
+    plain = vfife.solve(parse_scene(LINE.replace("[design]\n", "") + DYNAMICS),
+                        element_length=2.0).require()
+    assert "utilisation_max" not in plain.dynamics.envelope
+    assert not any("utilisation" in k for k in plain.summary())
+    assert plain.profile.utilisation is None
+
+
+def test_cli_fatigue_without_sea_states_is_one_line_exit_2(tmp_path):
+    p = tmp_path / "no-sea.toml"
+    p.write_text(LINE + FATIGUE)
+    r = subprocess.run([sys.executable, "-m", "verification.cli", "fatigue", str(p)],
+                       capture_output=True, text=True)
+    assert r.returncode == 2
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and "design.fatigue.sea_states" in lines[0]
+
+
+def test_fatigue_by_two_methods_refuses_a_3d_sea():
+    # the FD's sea response carries the in-plane moment only: an oblique sea is refused
+    # before solving, never counted without its out-of-plane bending
+    from riser.errors import SceneError
+    from verification.studies.design.fatigue import require_fatigue
+    sea = """
+[environment.waves]
+[environment.waves.spectrum]
+kind = "jonswap"
+hs = 2.0
+tp = 9.0
+heading_deg = 30.0
+[[design.fatigue.sea_states]]
+hs = 2.0
+tp = 9.0
+probability = 1.0
+"""
+    sc = parse_scene(LINE + FATIGUE + sea)
+    with pytest.raises(SceneError) as exc:
+        require_fatigue(sc)
+    assert exc.value.key.startswith("environment.waves")
