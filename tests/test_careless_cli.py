@@ -368,6 +368,8 @@ OPTIONS = [
     (["solve", "scr-steel"], "--element-length", "> 0 m and <= 1000 m",
      ["0", "-1", "5000", "inf"]),
     (["compare", "scr-steel"], "--element-length", "> 0 m and <= 1000 m", ["0", "nan"]),
+    (["fatigue", "scr-steel-fatigue"], "--element-length", "> 0 m and <= 1000 m",
+     ["0", "nan"]),
     (["compare", "scr-steel"], "--peer-segment-length", "between 0.01 and 1000 m",
      ["0", "0.001", "2000", "nan"]),
     (["modes", "scr-steel"], "--count", "between 1 and 50", ["0", "51", "-3", "2.5"]),

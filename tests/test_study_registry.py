@@ -22,7 +22,7 @@ from verification.studies import dynamics as dyn_study
 
 REPORTS = Path(__file__).resolve().parents[1] / "reports"
 #: the studies with one folder per unit (scene) under reports/NAME/
-PER_UNIT = {"compare", "cost", "modes", "dynamics", "cross_current", "sea_states"}
+PER_UNIT = {"compare", "cost", "modes", "dynamics", "cross_current", "sea_states", "design"}
 #: the verdicts a study's index row may give; pass/fail studies must pass on the committed
 #: reports (the suite's claims), the reproductions of incomplete papers only report
 VERDICTS = {
@@ -33,9 +33,12 @@ VERDICTS = {
     "liu2021": {"reported (paper inputs incomplete)"},
     "cost": {"reported (orders: `--full`)", "reported"},
     "sea_states": {"pass"},
+    "design": {"pass", "reported"},
 }
 #: the files of a solve that only a dynamic run writes (compare: none of its scenes has one)
 DYNAMIC = {"timeseries.csv", "envelope.csv", "states.npz", "timeseries.png", "envelope.png"}
+#: the plot of a solve that only a scene with [design] writes (no compared scene has one)
+DESIGN_ONLY = {"utilisation.png"}
 
 
 def folders(name: str) -> list[Path]:
@@ -54,6 +57,8 @@ def expected_files(name: str, folder: Path) -> set[str]:
     names = set(outdir.STUDY_FILES[name])
     if name == "sea_states":       # each unit its own files
         return set(outdir.SEA_STATES_UNITS[folder.name])
+    if name == "design":
+        return set(outdir.DESIGN_UNITS[folder.name])
     if name == "dynamics":          # the static comparison, then a folder per case
         names |= {f"{case}/{f}" for case, *_ in dyn_study.cases(folder.name)
                   for f in dynamics_report.FILES}
@@ -68,13 +73,13 @@ def expected_files(name: str, folder: Path) -> set[str]:
     # current at the seabed: its report says so, and no bvp_paper_model/ is written
     paper = "The paper-model BVP does not apply" not in (folder / "report.md").read_text()
     return {f for f in names
-            if (dynamic or Path(f).name not in DYNAMIC)
+            if (dynamic or Path(f).name not in DYNAMIC) and Path(f).name not in DESIGN_ONLY
             and (analytic or not f.startswith("analytic/"))
             and (paper or not f.startswith("bvp_paper_model/"))}
 
 
 def test_the_registry_lists_every_study_once():
-    assert len(STUDIES) == len(set(STUDIES)) == 11
+    assert len(STUDIES) == len(set(STUDIES)) == 12
     assert set(VERDICTS) == set(STUDIES) == set(outdir.STUDY_FILES)
 
 

@@ -25,6 +25,12 @@ ANALYTIC_BENCH_SCENES = ("scr-steel", "kang2015-jlay")
 #: the BVP's 3D rod against its planar solve (same solution) and on 3D scenes (issue 32)
 ROD_PLANAR = ("scr-steel", "yu2021-a3", "wang2014-current-1p5")
 ROD_3D = ("scr-steel-current-90", "yu2021-a3-current-90", "yu2021-a3-current-turning")
+#: the design checks' cost (issue 34): a dynamic run of this scene with its [design] and
+#: [design.fatigue] against the same run without, at DESIGN_ELEMENT_LENGTH [m] for
+#: DESIGN_DURATION [s] (statistics from a third of it)
+DESIGN_SCENE = "scr-steel-fatigue"
+DESIGN_ELEMENT_LENGTH = 2.0
+DESIGN_DURATION = 60.0
 
 
 def bench_scene() -> Scene:
@@ -56,8 +62,32 @@ def run(out: Path) -> dict:
     a_t, b_t = analytic_times(single), bvp_times(single)
     bench["analytic"] = {n: {"analytic_s": a_t[n], "bvp_s": b_t[n], "bvp_over_analytic":
                              b_t[n] / a_t[n]} for n in a_t}
+    bench["design"] = design_cost()
     (out / "bench.json").write_text(json.dumps(bench, indent=2) + "\n")
     return bench
+
+
+def design_cost() -> dict:
+    """Wall times [s] of one VFIFE dynamic run with the design checks (utilisation every
+    sample, the fatigue record and its rainflow count) and without, side by side."""
+    import time
+
+    import vfife
+    from riser.dynamics import Dynamics
+    base = resolve(DESIGN_SCENE)
+    base = base.replace(dynamics=Dynamics(duration=DESIGN_DURATION,
+                                          statistics_start=DESIGN_DURATION / 3.0))
+    # compile the kernels of the run with a short one: the runs below are timed alone
+    vfife.solve(base.replace(dynamics=Dynamics(duration=1.0)), element_length=8.0)
+    walls = {}
+    for key, scene in (("without", base.replace(design=None)), ("with", base)):
+        t0 = time.perf_counter()        # the whole solve: the fatigue count follows the run
+        vfife.solve(scene, element_length=DESIGN_ELEMENT_LENGTH).require()
+        walls[key] = time.perf_counter() - t0
+    return {"scene": DESIGN_SCENE, "element_length": DESIGN_ELEMENT_LENGTH,
+            "duration_s": DESIGN_DURATION, "with_design_s": walls["with"],
+            "without_design_s": walls["without"],
+            "design_on_over_off": walls["with"] / walls["without"]}
 
 
 def summary_lines(bench: dict) -> list[str]:
@@ -77,4 +107,9 @@ def summary_lines(bench: dict) -> list[str]:
     if "bvp_rod" in bench:
         from bvp.bench import rod_lines
         lines.extend(rod_lines(bench["bvp_rod"]))
+    if "design" in bench:
+        d = bench["design"]
+        lines.append(f"design checks on/off: {d['scene']} dynamic run ({d['duration_s']:g} s at "
+                     f"{d['element_length']:g} m) {d['with_design_s']:.2f} / "
+                     f"{d['without_design_s']:.2f} s = x{d['design_on_over_off']:.2f}")
     return lines

@@ -28,7 +28,7 @@ try:                             # Ctrl-C while the program loads (numpy): one l
     from verification import peers
     from verification.runtime.interrupts import exit_quietly_on_interrupt
 
-    from . import bench, compare, solve, studies, sweep
+    from . import bench, compare, design, solve, studies, sweep
     from .common import QUIET_HELP, Parser, err
 except KeyboardInterrupt:
     print("error: interrupted", file=sys.stderr)
@@ -40,13 +40,14 @@ def build_parser() -> argparse.ArgumentParser:
         "Dual-method verification suite for deepwater risers (VFIFE and BVP)."))
     p.add_argument("-q", "--quiet", action="store_true", help=QUIET_HELP)
     sub = p.add_subparsers(dest="command", required=True)
-    for group in (solve, studies, compare, bench, sweep):
+    for group in (solve, studies, compare, design, bench, sweep):
         group.add_parsers(sub)
     for name in peers.names():
         add = peers.peer(name).add_commands
         if add is not None:
             add(sub)
-    for name in ("solve", "compare", "modes", "stress", "cost", "reproduce", "bench", "sweep"):
+    for name in ("solve", "compare", "modes", "stress", "cost", "reproduce", "bench", "sweep",
+                 "fatigue"):
         sub.choices[name].add_argument("-q", "--quiet", action="store_true",   # after it
                                        default=argparse.SUPPRESS, help=QUIET_HELP)
     return p

@@ -39,11 +39,16 @@ def cmd_solve(args) -> int:
             f"{res.message}")
         return res.status.exit_code
     sm = res.summary()
+    if res.profile.utilisation is not None:
+        from verification.report.design import write_plot
+        write_plot(res.profile, res.dynamics.envelope if res.dynamics else None, out,
+                   f"{scene.name} [{args.method}]")
     print(f"{scene.name} [{args.method}]: {res.message} in {res.wall_time_s:.3f} s")
     for line in summary_lines(sm, dynamic=res.dynamics is not None):
         print(line)
     if res.dynamics is None:
-        print(f"  wrote {out}/profile.csv and summary.json")
+        extra = ", utilisation.png" if res.profile.utilisation is not None else ""
+        print(f"  wrote {out}/profile.csv, summary.json{extra}")
         return print_warnings(res, args.strict)
     from verification.report.dynamics import summary_lines as dynamic_lines, write_plots
     write_plots(res.dynamics, out, f"{scene.name} [{args.method}]", sm["statistics_start"])
@@ -69,6 +74,12 @@ def summary_lines(sm: dict, dynamic: bool = False) -> list[str]:
                  f"{with_unit(sm['max_tension'], 'N')}, max moment "
                  f"{with_unit(sm['max_moment'], 'N m', decimals=3)} at s = "
                  f"{length(sm['max_moment_s'], decimals=1)} m")
+    if sm.get("max_utilisation") is not None:           # a scene with [design]
+        lines.append(f"  {'static: ' if dynamic else ''}max utilisation "
+                     f"({sm['design_code']}) {sm['max_utilisation']:.4f} at s = "
+                     f"{length(sm['max_utilisation_s'], decimals=1)} m, max von Mises "
+                     f"{sm['max_von_mises'] / 1e6:.1f} MPa"
+                     + ("" if sm["design_passes"] else ": FAILS the code check"))
     if sm.get("max_lateral_offset") is not None:        # a 3D scene
         lines.append(f"  {'static: ' if dynamic else ''}largest lateral excursion "
                      f"{length(sm['max_lateral_offset'])} m from the plane of the ends at "

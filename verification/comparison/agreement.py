@@ -130,6 +130,9 @@ def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
     if "hang_off_wall_tension" in sb and "hang_off_wall_tension" in sv:
         add("hang_off_wall_tension", sb["hang_off_wall_tension"], sv["hang_off_wall_tension"])
     add("hang_off_angle_deg", sb["hang_off_angle_deg"], sv["hang_off_angle_deg"])
+    if "max_utilisation" in sb and "max_utilisation" in sv:       # a scene with [design]
+        add("max_utilisation", sb["max_utilisation"], sv["max_utilisation"],
+            note=f"{sb['design_code']} at s = {sb['max_utilisation_s']:.1f} m (BVP)")
     if sb["tdp_x"] is not None:
         add("tdp_x", sb["tdp_x"], sv["tdp_x"])
         add("tdp_tension", sb["tdp_tension"], sv["tdp_tension"])

@@ -73,6 +73,7 @@ class SeaComparison:
     notes: list = field(default_factory=list)
     fd_wall_s: float = 0.0
     vfife_wall_s: float = 0.0
+    vfife_result: object = None       # the VFIFE's SolveResult of the run (its dynamics)
 
     @property
     def passed(self) -> bool:
@@ -150,7 +151,7 @@ def compare_sea(scene: Scene, *, element_length: float | None = None, static=Non
     vf = read_record(v, ramp + settle)
     rows = agreement_rows(fd, vf, static)
     return SeaComparison(scene, matched, fd, vf, rows, h, record, ramp, settle, static,
-                         notes, fd.wall_time_s, wall)
+                         notes, fd.wall_time_s, wall, v)
 
 
 def read_record(res, start: float) -> dict:

@@ -95,6 +95,17 @@ def summary_lines(sm: dict) -> list[str]:
     if "dynamic_min_touchdown_s" in sm:
         lines.append(f"    touchdown s from {sm['dynamic_min_touchdown_s']:.1f} to "
                      f"{sm['dynamic_max_touchdown_s']:.1f} m")
+    if "dynamic_max_utilisation" in sm:
+        lines.append(f"    max utilisation ({sm['dynamic_design_code']}) "
+                     f"{sm['dynamic_max_utilisation']:.4f} at s = "
+                     f"{sm['dynamic_max_utilisation_s']:.1f} m (t = "
+                     f"{sm['dynamic_max_utilisation_time']:.2f} s), von Mises "
+                     f"{sm['dynamic_max_von_mises'] / 1e6:.1f} MPa")
+    if "dynamic_min_fatigue_life" in sm:
+        lines.append(f"    fatigue: Miner sum {sm['dynamic_max_fatigue_damage']:.3g} over the "
+                     f"{sm['dynamic_fatigue_record_s']:.1f} s window at s = "
+                     f"{sm['dynamic_min_fatigue_life_s']:.1f} m: life "
+                     f"{sm['dynamic_min_fatigue_life']:.3g} years in this sea state")
     lines.append(f"    {sm['dynamic_steps']} steps of {sm['dynamic_time_step']:.3g} s, "
                  f"{sm['realtime_factor']:.3g} x real time")
     return lines

@@ -25,9 +25,9 @@ from riser.errors import SceneError
 from riser.io.scene_file import path_problem
 
 #: ``solve``: one result (SolveResult.write; the rest: a VFIFE dynamic run, its plots, and
-#: states.npz with ``[dynamics] save_states``)
+#: states.npz with ``[dynamics] save_states``; utilisation.png with ``[design]``)
 SOLVE = ("profile.csv", "summary.json", "timeseries.csv", "envelope.csv", "states.npz",
-         "timeseries.png", "envelope.png")
+         "timeseries.png", "envelope.png", "utilisation.png")
 #: ``compare`` (and each scene folder of ``reproduce compare``): the protocol's files and
 #: one solve folder per method and for the analytic column (a peer's column adds its own
 #: files: ``verification.peers.Peer.files``)
@@ -58,6 +58,14 @@ SEA_STATES_UNITS = {
                         "sea_response.png", "spectra.png", "sea_tension.png",
                         "report.md")))}
 SEA_STATES = tuple(dict.fromkeys(f for files in SEA_STATES_UNITS.values() for f in files))
+#: each unit folder of ``reproduce design``: its files; ``DESIGN`` all of them
+DESIGN_UNITS = {
+    "utilisation": ("utilisation.csv", "cases.csv", "utilisation.png", "report.md"),
+    "fatigue": ("stations.csv", "sea_states.csv", "fatigue_along_s.csv", "fatigue.png",
+                "report.md")}
+DESIGN = tuple(dict.fromkeys(f for files in DESIGN_UNITS.values() for f in files))
+#: ``fatigue SCENE``: the fatigue unit's files
+FATIGUE = DESIGN_UNITS["fatigue"]
 #: ``stress`` and ``reproduce stress``
 STRESS = ("summary.csv", "report.md")
 #: ``bench``
@@ -81,6 +89,7 @@ STUDY_FILES = {
     "modes": MODES,
     "cross_current": CROSS_CURRENT,
     "sea_states": SEA_STATES,
+    "design": DESIGN,
     # the static comparison of each scene (without the paper model) beside its cases
     "dynamics": ("cases.csv", "convergence.csv", "report.md") + tuple(
         f for f in COMPARE if not f.startswith("bvp_paper_model/")),
@@ -180,7 +189,7 @@ def clear(folder: str | Path | None, names: tuple[str, ...]) -> list[Path]:
 
 def clear_unit(study: str, unit: str | None, study_folder: str | Path) -> list[Path]:
     """Clear what one unit of ``reproduce`` writes: ``study_folder/unit`` for the studies
-    with a folder per unit (compare, cost, modes, cross_current, sea_states), else
+    with a folder per unit (compare, cost, modes, cross_current, sea_states, design), else
     ``study_folder``."""
     folder = Path(study_folder) / unit if unit is not None else Path(study_folder)
     return clear(folder, STUDY_FILES[study])

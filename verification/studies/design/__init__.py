@@ -1,0 +1,62 @@
+"""Design checks (``riser-verify reproduce design``, issue 34): :mod:`.utilisation` (the
+static DNV-ST-F201 utilisation along a steel catenary and a steel lazy wave by both
+methods) and :mod:`.fatigue` with :mod:`.fatigue_report` (fatigue over a scatter diagram
+by the VFIFE's rainflow and the frequency domain's spectral estimates, scr-steel-fatigue
+at the touchdown and the hang-off)."""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import pandas as pd
+
+from verification.catalog import resolve
+
+from ..study import Study
+from . import fatigue, fatigue_report, utilisation
+
+#: the units of the study, each a folder of reports/design/
+UNITS = ("utilisation", "fatigue")
+#: the fatigue study's scene and the VFIFE's element length there [m]: 2 m, 0.6 of the
+#: bending length at the touchdown; at 1 m the curvature's standard deviation there moves
+#: by 0.8 % (measured: 4.754e-4 against 4.791e-4 1/m, Hs 3 m)
+FATIGUE_SCENE = "scr-steel-fatigue"
+FATIGUE_ELEMENT_LENGTH = 2.0
+
+
+def run_unit(unit: str, out: Path, note: str = "", full: bool = False) -> str:
+    """Run one unit into ``out/unit``; returns the log line."""
+    folder = Path(out) / unit
+    if unit == "utilisation":
+        return utilisation.run_unit(folder, note)
+    if unit == "fatigue":
+        t0 = time.perf_counter()
+        res = fatigue.run_scatter(resolve(FATIGUE_SCENE), FATIGUE_ELEMENT_LENGTH)
+        head = fatigue_report.write(res, folder, note, time.perf_counter() - t0)
+        return (f"design/fatigue: touchdown damage/yr rainflow (VFIFE) "
+                f"{head['touchdown_rainflow']:.3g}, Dirlik (FD) {head['touchdown_dirlik']:.3g}"
+                f" (x{head['ratio']:.3g}); hang-off x{head['hang_off_ratio']:.3g}; records "
+                f"{head['record_s']:.0f} s")
+    raise ValueError(f"unknown unit {unit!r} of design")
+
+
+def index_row(d: Path):
+    """(cases, worst agreement, verdict) of one unit's folder."""
+    if (d / "cases.csv").exists():
+        df = pd.read_csv(d / "cases.csv")
+        worst = df["rel_diff"].abs().max()
+        return (f"{len(df)} scenes", f"max utilisation BVP vs VFIFE within "
+                f"{100 * worst:.4f} % (tolerance {100 * df.tolerance.iloc[0]:.2g} %)",
+                "pass" if (df["verdict"] == "pass").all() else "fail")
+    if (d / "stations.csv").exists():
+        st = pd.read_csv(d / "stations.csv").set_index("estimate")
+        return ("3 sea states, 4 estimates",
+                f"touchdown damage Dirlik (FD) / rainflow (VFIFE) "
+                f"{st.loc['dirlik_fd', 'touchdown_ratio']:.3g}, hang-off "
+                f"{st.loc['dirlik_fd', 'hang_off_ratio']:.3g}", "reported")
+    return None
+
+
+STUDY = Study("design", UNITS, run_unit, index_row,
+              seconds={"utilisation": 15, "fatigue": 230})
