@@ -37,7 +37,8 @@ def run_unit(unit: str, out: Path, note: str = "", full: bool = False) -> str:
         return (f"design/fatigue: touchdown damage/yr rainflow (VFIFE) "
                 f"{head['touchdown_rainflow']:.3g}, Dirlik (FD) {head['touchdown_dirlik']:.3g}"
                 f" (x{head['ratio']:.3g}); hang-off x{head['hang_off_ratio']:.3g}; records "
-                f"{head['record_s']:.0f} s")
+                f"{min(st.record_s for st in res.states):.0f} to "
+                f"{max(st.record_s for st in res.states):.0f} s")
     raise ValueError(f"unknown unit {unit!r} of design")
 
 
