@@ -28,11 +28,12 @@ CODE_TITLES = {"dnv-st-f201": "DNV-ST-F201 LRFD combined loading",
                "api-rp-2rd": "API RP 2RD von Mises (C_f C_a SMYS)"}
 
 
-def utilisation(design, wall, p_i, p_e, M_d, T_ed, von_mises) -> np.ndarray:
+def utilisation(design, wall, p_i, p_e, M_d, T_ed, von_mises, fixed=None) -> np.ndarray:
     """The code's utilisation: DNV's from the design loads M_d [N m], T_ed [N] and the
-    pressures [Pa], API's from the (unfactored) von Mises stress [Pa]."""
+    pressures [Pa], API's from the (unfactored) von Mises stress [Pa]; ``fixed``: DNV's
+    :func:`~riser.design.dnv_f201.resistances` of the wall, when at hand."""
     if design.code == "dnv-st-f201":
-        return dnv_f201.utilisation(design, wall, p_i, p_e, M_d, T_ed)
+        return dnv_f201.utilisation(design, wall, p_i, p_e, M_d, T_ed, fixed)
     return api_2rd.utilisation(design, wall, von_mises)
 
 

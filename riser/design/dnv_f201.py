@@ -84,20 +84,31 @@ def flow_stress_factor(D, t2, fy, fu, q_h):
     return (1.0 - beta) + beta * fu / fy
 
 
-def utilisation(design, wall, p_ld, p_e, M_d, T_ed) -> np.ndarray:
-    """The combined-loading utilisation (module docstring) at stations: ``design`` the
-    [design] part, ``wall`` a :class:`riser.design.wall.Wall`, pressures [Pa], design
-    moment [N m] and effective tension [N] (arrays that broadcast)."""
-    D, t = wall.outer_diameter, wall.thickness
-    t2 = t - design.corrosion_allowance
+def resistances(design, wall) -> dict:
+    """What does not change with the loads, at the wall's stations: t_2 [m], f_y, f_u
+    [Pa], gamma_SC gamma_m, the burst p_b(t_2) and collapse p_c(t_2) resistances [Pa] (a
+    dynamic run computes them once)."""
+    t2 = wall.thickness - design.corrosion_allowance
     fy = wall.yield_strength * design.alpha_u
     fu = wall.tensile_strength * design.alpha_u
-    gamma = GAMMA_SC[design.safety_class] * design.gamma_m
+    return {"t2": t2, "fy": fy, "fu": fu,
+            "gamma": GAMMA_SC[design.safety_class] * design.gamma_m,
+            "p_b": burst_resistance(wall.outer_diameter, t2, fy, fu),
+            "p_c": collapse_resistance(wall.outer_diameter, t2, wall.youngs_modulus, fy,
+                                       design.alpha_fab, design.ovality)}
+
+
+def utilisation(design, wall, p_ld, p_e, M_d, T_ed, fixed: dict | None = None) -> np.ndarray:
+    """The combined-loading utilisation (module docstring) at stations: ``design`` the
+    [design] part, ``wall`` a :class:`riser.design.wall.Wall`, pressures [Pa], design
+    moment [N m] and effective tension [N] (arrays that broadcast); ``fixed``: the
+    wall's :func:`resistances`, when already at hand."""
+    r = fixed if fixed is not None else resistances(design, wall)
+    D, t2, fy, fu, gamma = wall.outer_diameter, r["t2"], r["fy"], r["fu"], r["gamma"]
     p_ld, p_e = np.asarray(p_ld, float), np.asarray(p_e, float)
     M = np.abs(np.asarray(M_d, float))
     T = np.asarray(T_ed, float)
-    p_b = burst_resistance(D, t2, fy, fu)
-    over = (p_ld - p_e) / p_b
+    over = (p_ld - p_e) / r["p_b"]
     internal = over >= 0.0
     q_h = np.where(internal, over * 2.0 / math.sqrt(3.0), 0.0)
     a_c = flow_stress_factor(D, t2, fy, fu, q_h)
@@ -106,7 +117,5 @@ def utilisation(design, wall, p_ld, p_e, M_d, T_ed) -> np.ndarray:
     load = M / M_k
     u_int = (gamma * (load * np.sqrt(np.maximum(1.0 - over * over, 0.0)) + (T / T_k) ** 2)
              + over * over)
-    p_c = collapse_resistance(D, t2, wall.youngs_modulus, fy, design.alpha_fab,
-                              design.ovality)
-    u_ext = gamma * np.sqrt((load + (T / T_k) ** 2) ** 2 + ((p_e - p_ld) / p_c) ** 2)
+    u_ext = gamma * np.sqrt((load + (T / T_k) ** 2) ** 2 + ((p_e - p_ld) / r["p_c"]) ** 2)
     return np.where(internal, u_int, u_ext)

@@ -16,6 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..frame import LinePlane, plane_columns
+from . import dnv_f201
 from .checks import utilisation
 from .fatigue import time_domain
 from .wall import pressures, stresses, wall_at, wall_tension
@@ -30,6 +31,9 @@ class DynamicDesign:
         self.scene, self.design = scene, scene.design
         self.s = np.asarray(s, float)
         self.wall = wall_at(scene, self.s)
+        # the resistances that do not change with the loads: once, not every sample
+        self.fixed = (dnv_f201.resistances(self.design, self.wall)
+                      if self.design.code == "dnv-st-f201" else None)
         self.plane = LinePlane.of(scene)
         self.static = None
         n = len(self.s)
@@ -66,7 +70,7 @@ class DynamicDesign:
         g_f, g_e = d.gamma_f, d.gamma_e
         m_d = np.hypot(g_f * in_f + g_e * (m_in - in_f), g_f * out_f + g_e * (m_out - out_f))
         t_ed = g_f * T_f + g_e * (T - T_f)
-        u = utilisation(d, wall, p_i, p_e, m_d, t_ed, st.von_mises)
+        u = utilisation(d, wall, p_i, p_e, m_d, t_ed, st.von_mises, self.fixed)
         np.maximum(self.u_max, u, out=self.u_max)
         np.maximum(self.vm_max, st.von_mises, out=self.vm_max)
         for key, values in (("utilisation", u), ("von_mises", st.von_mises)):
