@@ -23,9 +23,6 @@ from .wall import pressures, stresses, wall_at, wall_tension
 
 #: the profile columns of the design checks, after ``wall_tension``
 COLUMNS = ("stress_axial", "stress_bending", "stress_hoop", "von_mises", "utilisation")
-#: what each code's utilisation is, for reports
-CODE_TITLES = {"dnv-st-f201": "DNV-ST-F201 LRFD combined loading",
-               "api-rp-2rd": "API RP 2RD von Mises (C_f C_a SMYS)"}
 
 
 def utilisation(design, wall, p_i, p_e, M_d, T_ed, von_mises, fixed=None) -> np.ndarray:
@@ -60,22 +57,6 @@ def apply(scene, profile) -> None:
     for name, values in cols.items():
         setattr(profile, name, values)
     profile.design_code = scene.design.code
-
-
-def peak(s, values) -> tuple[float, float]:
-    """(largest value, its arc length) of ``values`` along ``s``."""
-    i = int(np.nanargmax(values))
-    return float(values[i]), float(s[i])
-
-
-def summary(design, s, utilisation_values, von_mises_values, prefix: str = "") -> dict:
-    """summary.json's design figures: the code, the largest utilisation and von Mises
-    stress [Pa] and where [m], and whether the line passes (utilisation <= 1)."""
-    u, u_s = peak(s, utilisation_values)
-    vm, vm_s = peak(s, von_mises_values)
-    return {f"{prefix}design_code": design.code, f"{prefix}max_utilisation": u,
-            f"{prefix}max_utilisation_s": u_s, f"{prefix}max_von_mises": vm,
-            f"{prefix}max_von_mises_s": vm_s, f"{prefix}design_passes": bool(u <= 1.0)}
 
 
 def amplitude_columns(scene, s, y, tension, moment, tension_amp, moment_amp) -> dict:
