@@ -105,7 +105,7 @@ def summary_lines(sm: dict) -> list[str]:
         lines.append(f"    fatigue: Miner sum {sm['dynamic_max_fatigue_damage']:.3g} over the "
                      f"{sm['dynamic_fatigue_record_s']:.1f} s window at s = "
                      f"{sm['dynamic_min_fatigue_life_s']:.1f} m: life "
-                     f"{sm['dynamic_min_fatigue_life']:.3g} years in this sea state")
+                     f"{sm['dynamic_min_fatigue_life']:.3g} years (the window repeated)")
     lines.append(f"    {sm['dynamic_steps']} steps of {sm['dynamic_time_step']:.3g} s, "
                  f"{sm['realtime_factor']:.3g} x real time")
     return lines
