@@ -215,3 +215,25 @@ probability = 1.0
     with pytest.raises(SceneError) as exc:
         require_fatigue(sc)
     assert exc.value.key.startswith("environment.waves")
+
+
+def test_harmonic_cycle_utilisation_by_hand():
+    # without a dynamic part the cycle's utilisation is the static one (gamma_F on all);
+    # a tension harmonic Q_T alone peaks where the factored tension gamma_F T_0 +
+    # gamma_E |Q_T| is largest (DNV's criterion grows with |T_ed|): by hand with the
+    # criterion at that tension (72 phases: the grid holds phi = 0 exactly)
+    from riser.design.checks import harmonic_columns, static_columns
+    sc = parse_scene(LINE)
+    s = np.array([20.0, 40.0, 60.0])
+    y = np.array([5.0, 20.0, 50.0])
+    T0, M0 = np.array([3e5, 4e5, 5e5]), np.array([2e4, -1e4, 5e3])
+    zero = {k: np.zeros(3, complex) for k in ("tension", "moment", "moment_out", "dy")}
+    still = harmonic_columns(sc, s, y, T0, M0, zero)
+    stat = static_columns(sc, s, y, T0, M0)
+    np.testing.assert_allclose(still["utilisation"], stat["utilisation"], rtol=1e-12)
+    amp = dict(zero, tension=np.array([5e4, 5e4j, -5e4], complex))
+    cyc = harmonic_columns(sc, s, y, T0, M0, amp)
+    p_e = 1025.0 * 9.81 * (60.0 - y)
+    hand = dnv_f201.utilisation(sc.design, wall_at(sc, s), 0.0, p_e, 1.1 * np.abs(M0),
+                                1.1 * T0 + 1.3 * 5e4)
+    np.testing.assert_allclose(cyc["utilisation"], hand, rtol=1e-12)

@@ -9,6 +9,7 @@ import math
 
 import numpy as np
 
+from riser.design.checks import harmonic_columns
 from riser.profile import waves
 from riser.response import HarmonicResponse
 from riser.scene import Scene
@@ -152,6 +153,8 @@ def agreement_rows(scene: Scene, fd: HarmonicResponse, vf: dict, static):
                      float(np.max(disp_vf)), rel, where, slack))
     rows.append(_row("min_tension", fd_min, vf["min_tension"],
                      (vf["min_tension"] - fd_min) / tmax, None, slack))
+    if scene.design is not None and vf.get("max_utilisation") is not None:
+        rows.append(design_row(scene, fd, vf, s))
     if vf["drift"] > DRIFT_LIMIT:
         warns.append(f"window_drift: the VFIFE's first harmonic changed by "
                      f"{vf['drift']:.2%} of its peak between the window's halves after "
@@ -203,3 +206,22 @@ def nonlinearity(vf: dict, zone) -> dict:
 def wrap_deg(deg: float) -> float:
     """An angle difference [deg] in [-180, 180)."""
     return (deg + 180.0) % 360.0 - 180.0
+
+
+def design_row(scene: Scene, fd: HarmonicResponse, vf: dict, s) -> dict:
+    """With [design], the largest dynamic utilisation: the FD's over a cycle of its first
+    harmonic about the static state (:func:`riser.design.checks.harmonic_columns`) against
+    the VFIFE's largest over its window (every sample: its higher harmonics too);
+    reported. A 3D static state has an out-of-plane static moment the FD's static
+    record does not carry: not compared."""
+    if not scene.statics_planar:
+        return _row("max_utilisation_dynamic", None, vf["max_utilisation"], None,
+                    judged=False)
+    q = {k: fd.at(k, s) for k in ("tension", "moment", "moment_out", "dy")}
+    y = np.interp(s, vf["static_s"], vf["static_y"])
+    cols = harmonic_columns(scene, s, y, np.interp(s, fd.s, fd.static["tension"]),
+                            np.interp(s, fd.s, fd.static["moment"]), q)
+    j = int(np.argmax(cols["utilisation"]))
+    fd_u = float(cols["utilisation"][j])
+    return _row("max_utilisation_dynamic", fd_u, vf["max_utilisation"],
+                vf["max_utilisation"] / fd_u - 1.0, float(s[j]), judged=False)

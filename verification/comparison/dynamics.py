@@ -297,6 +297,9 @@ def compare_dynamics(scene: Scene, *, amplitudes=None, element_length: float | N
                 break
             settle *= 2
         vf["settle_periods"], vf["ramp_periods"] = settle, ramp
+        sm = v.summary()
+        vf["max_utilisation"] = sm.get("dynamic_max_utilisation")      # with [design]
+        vf["static_s"], vf["static_y"] = v.profile.s, v.profile.y
         rows, zone, warns = agreement_rows(matched, fd, vf, static)
         if k > 0:                  # the linear limit is judged; the rest measures nonlinearity
             for row in rows:
