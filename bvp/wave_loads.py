@@ -46,7 +46,7 @@ from scipy.interpolate import CubicSpline
 from riser.errors import SceneError, UnsupportedSceneError
 from riser.hang_off_motion import scene_components, vessel_amplitudes
 from riser.profile import Profile
-from riser.response import harmonic_motion, motion_amplitudes
+from riser.response import harmonic_motion_vector
 from riser.scene import Scene
 from riser.sections import segment_properties
 from riser.waves import WaveComponents
@@ -202,31 +202,32 @@ def drive(scene: Scene, period, motion):
                 and waves.spectrum is None:
             period = waves.trains[0].period
         elif period is None:
-            period = top_motion(scene)[2]
+            period = top_motion(scene)[1]
         return period, np.asarray(motion, complex).reshape(3), None
     if waves is None:
-        axis, amplitude, own = top_motion(scene)
-        return (own if period is None else period), motion_amplitudes(axis, amplitude), None
+        vector, own = top_motion(scene)
+        return (own if period is None else period), vector, None
     own, motion, _ = regular_wave(scene)
     if period is not None and abs(period - own) > 1e-12 * own:
         raise ValueError(f"period {period:g} s: the scene's wave train has {own:g} s (give "
                          "no period, or a motion to solve another)")
     tm = scene.dynamics.top_motion if scene.dynamics is not None else None
     if tm is not None:
-        axis, amplitude, tm_period = top_motion(scene)
+        vector, tm_period = top_motion(scene)
         if abs(tm_period - own) > 1e-12 * own:
             raise UnsupportedSceneError(
                 f"{scene.source}: dynamics.top_motion.period: {tm_period:g} s beside a wave "
                 f"train of {own:g} s: one harmonic response has one period (give them "
                 "the same period, or drop one)")
-        motion = motion + motion_amplitudes(axis, amplitude)
+        motion = motion + vector
     return own, motion, scene_components(scene)
 
 
-def top_motion(scene: Scene) -> tuple[str, float, float]:
-    """(axis, amplitude [m], period [s]) of the scene's harmonic motion
-    (:func:`riser.response.harmonic_motion`; refused as unsupported without one)."""
+def top_motion(scene: Scene) -> tuple[np.ndarray, float]:
+    """((3,) complex amplitudes [m], period [s]) of the scene's harmonic motion, along one
+    axis or an orbit (:func:`riser.response.harmonic_motion_vector`; refused as
+    unsupported without one)."""
     try:
-        return harmonic_motion(scene)
+        return harmonic_motion_vector(scene)
     except SceneError as exc:
         raise UnsupportedSceneError(str(exc)) from None

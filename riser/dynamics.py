@@ -10,6 +10,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
 from .spec import Part, check_fields, part_error, spec
 
 HARMONIC = "required (harmonic)"
@@ -33,14 +35,25 @@ START_JUMP = 1e-9
 
 @dataclass(frozen=True)
 class TopMotion(Part):
-    """Prescribed hang-off motion along ``axis`` ('x', 'y' or 'z'): harmonic (amplitude
-    [m], period [s]: d = A sin(2 pi t / T)) or a time series (times [s], displacements
-    [m], linearly interpolated; amplitude and period stay 0). ``ramp_time`` [s]: the
-    motion is multiplied by the half-cosine ramp 0.5 (1 - cos(pi t / t_r)) up to t_r; None
-    (the default) means one period of a harmonic motion and no ramp for a time series
-    (which starts where it says); 0 turns the ramp off (an impulsive start)."""
+    """Prescribed hang-off motion, one of four forms (d [m] in the scene's axes):
 
-    axis: str = spec(kind="string", choices=("x", "y", "z"), doc="direction of the motion")
+    - along ``axis`` ('x', 'y' or 'z'), harmonic: d = A sin(2 pi t / T) (``amplitude``,
+      ``period``);
+    - along ``axis``, a time series (``times`` [s], ``displacements`` [m], linearly
+      interpolated; amplitude and period stay 0);
+    - an orbit (several axes, one period): d_k = A_k sin(2 pi t / T + phi_k) for k = x,
+      y, z (``amplitudes``, ``period``, ``phases_deg`` phase leads [deg]);
+    - a time series per axis (``times`` with ``displacements_x``, ``displacements_y``,
+      ``displacements_z``, each optional: an axis not given stays still).
+
+    ``ramp_time`` [s]: the motion is multiplied by the half-cosine ramp 0.5 (1 - cos(pi
+    t / t_r)) up to t_r; None (the default) means one period of a harmonic motion and no
+    ramp for a time series (which starts where it says); 0 turns the ramp off (an
+    impulsive start)."""
+
+    axis: str | None = spec(None, "string", choices=("x", "y", "z"),
+                            default_doc="required (one axis)",
+                            doc="direction of a motion along one axis")
     amplitude: float = spec(0.0, ge=0.0, le=1000.0, unit="m", default_doc=HARMONIC,
                             also=f"peak speed 2 pi A / T <= {MAX_TOP_SPEED:g} m/s; "
                                  "along y, < the hang-off height",
@@ -60,40 +73,141 @@ class TopMotion(Part):
                                                    "the first 0 without a ramp",
                                                    default_doc=SERIES,
                                                    doc="displacement at each time")
+    amplitudes: tuple[float, ...] | None = spec(None, "numbers", length=3, ge=0.0, le=1000.0,
+                                                unit="m", default_doc="required (orbit)",
+                                                doc="(x, y, z) amplitudes of an orbit "
+                                                    "d_k = A_k sin(2 pi t / T + phi_k)")
+    phases_deg: tuple[float, ...] = spec((0.0, 0.0, 0.0), "numbers", length=3, ge=-360.0,
+                                         le=360.0, unit="deg",
+                                         doc="(x, y, z) phase leads phi_k of an orbit")
+    displacements_x: tuple[float, ...] | None = spec(None, "numbers", ge=-1000.0, le=1000.0,
+                                                     unit="m", also="as many as times",
+                                                     doc="x displacement at each time (a "
+                                                         "series per axis)")
+    displacements_y: tuple[float, ...] | None = spec(None, "numbers", ge=-1000.0, le=1000.0,
+                                                     unit="m", also="as many as times",
+                                                     doc="y displacement at each time")
+    displacements_z: tuple[float, ...] | None = spec(None, "numbers", ge=-1000.0, le=1000.0,
+                                                     unit="m", also="as many as times",
+                                                     doc="z displacement at each time")
     ramp_time: float | None = spec(None, ge=0.0, unit="s", also="<= duration",
                                    default_doc="one period (harmonic); 0 (time series)",
                                    doc="half-cosine ramp of the motion; 0: no ramp")
 
     def __post_init__(self) -> None:
         error = part_error(self)
-        series = self.times is not None or self.displacements is not None
+        per_axis = tuple(k for k in "xyz" if getattr(self, f"displacements_{k}") is not None)
+        series = self.times is not None or self.displacements is not None or bool(per_axis)
         check_fields(self, skip=("amplitude", "period") if series else ())
+        orbit = self.amplitudes is not None
+        if orbit or per_axis:
+            if self.axis is not None:
+                raise error("axis", "not with " + ("amplitudes (an orbit moves along its "
+                            "amplitudes' axes)" if orbit else "displacements_x/_y/_z (a "
+                            "series per axis)"))
+        elif self.axis is None:
+            raise error("axis", "required: the direction of a motion along one axis (or give "
+                        "amplitudes for an orbit, displacements_x/_y/_z for a series per axis)")
         if not series:
+            if orbit and self.amplitude != 0.0:
+                raise error("amplitude", "not with amplitudes (an orbit gives one per axis)")
             self._check_harmonic_plausible(error)
             return
-        for name in ("amplitude", "period"):
-            if getattr(self, name) != 0.0:
+        for name in ("amplitude", "period", "amplitudes"):
+            if getattr(self, name) not in (0.0, None):
                 raise error(name, "not with times and displacements (a time series has "
                             "neither amplitude nor period)")
-        for name, other in (("times", "displacements"), ("displacements", "times")):
-            if getattr(self, name) is None:
-                raise error(name, f"required with {other} (a time series)")
+        if per_axis and self.displacements is not None:
+            raise error("displacements", "not with displacements_x/_y/_z (one axis, or a "
+                        "series per axis)")
+        if self.times is None:
+            raise error("times", "required with " + ("displacements_" + per_axis[0]
+                        if per_axis else "displacements") + " (a time series)")
+        if not per_axis and self.displacements is None:
+            raise error("displacements", "required with times (a time series)")
         n = len(self.times)
-        if len(self.displacements) != n:
-            raise error("displacements", f"must have {n} entries, got {len(self.displacements)}")
+        for k, d in self.series.items():
+            name = "displacements" if self.axis is not None else f"displacements_{k}"
+            if len(d) != n:
+                raise error(name, f"must have {n} entries, got {len(d)}")
         for i in range(1, n):
             if not self.times[i] > self.times[i - 1]:
                 raise error(f"times[{i}]", "must be strictly increasing")
         self._check_series_plausible(error)
 
+    @property
+    def series(self) -> dict:
+        """axis -> displacements [m] of a time series (one axis or several); {} for a
+        harmonic motion."""
+        if self.times is None:
+            return {}
+        if self.axis is not None:
+            return {self.axis: self.displacements}
+        return {k: getattr(self, f"displacements_{k}") for k in "xyz"
+                if getattr(self, f"displacements_{k}") is not None}
+
+    @property
+    def is_orbit(self) -> bool:
+        """True for a harmonic motion along several axes (``amplitudes``)."""
+        return self.amplitudes is not None
+
+    @property
+    def one_axis(self) -> bool:
+        """True for a motion along one ``axis`` (harmonic or a series)."""
+        return self.axis is not None
+
+    def moves(self, axis: str) -> bool:
+        """Whether the motion has a component along ``axis`` ('x', 'y', 'z')."""
+        if self.axis is not None:
+            return self.axis == axis
+        if self.amplitudes is not None:
+            return self.amplitudes["xyz".index(axis)] > 0.0
+        return axis in self.series
+
+    def complex_amplitudes(self):
+        """(3,) complex amplitudes D [m] of a harmonic motion, d(t) = Re(D e^{i omega t}):
+        A sin(omega t + phi) is Re(-i A e^{i phi} e^{i omega t})."""
+        out = np.zeros(3, complex)
+        if self.amplitudes is not None:
+            for k in range(3):
+                out[k] = -1j * self.amplitudes[k] * np.exp(1j * math.radians(self.phases_deg[k]))
+        else:
+            out["xyz".index(self.axis)] = -1j * self.amplitude
+        return out
+
+    def displacement(self, t):
+        """(3, nt) displacement [m] at times t [s] without the ramp."""
+        t = np.atleast_1d(np.asarray(t, float))
+        out = np.zeros((3, t.size))
+        if self.times is None:
+            wt = 2.0 * math.pi * t / self.period
+            if self.is_orbit:
+                for k in range(3):
+                    out[k] = self.amplitudes[k] * np.sin(wt + math.radians(self.phases_deg[k]))
+            else:                                 # A sin(omega t), as it always was
+                out["xyz".index(self.axis)] = self.amplitude * np.sin(wt)
+            return out
+        for k, d in self.series.items():
+            out["xyz".index(k)] = np.interp(t, self.times, d)
+        return out
+
+    @property
+    def resultant_amplitude(self) -> float:
+        """sqrt(sum A_k^2) [m] of a harmonic motion (A of one axis)."""
+        if self.amplitudes is not None:
+            return math.sqrt(sum(a * a for a in self.amplitudes))
+        return float(self.amplitude)
+
     def _check_harmonic_plausible(self, error) -> None:
         """Refuse a harmonic motion faster than :data:`MAX_TOP_SPEED` or accelerating
-        beyond :data:`MAX_TOP_ACCELERATION` (a unit or typing error, not a vessel)."""
-        a, period = self.amplitude, self.period
+        beyond :data:`MAX_TOP_ACCELERATION` (a unit or typing error, not a vessel); an
+        orbit by its resultant amplitude (an upper bound of its peak speed)."""
+        a, period = self.resultant_amplitude, self.period
+        key = "amplitudes" if self.is_orbit else "amplitude"
         speed = 2.0 * math.pi * a / period
         given = f"(amplitude {a:g} m, period {period:g} s)"
         if speed > MAX_TOP_SPEED:
-            raise error("amplitude", f"peak speed 2 pi amplitude / period = {speed:.4g} m/s "
+            raise error(key, f"peak speed 2 pi amplitude / period = {speed:.4g} m/s "
                         f"{given} must be <= {MAX_TOP_SPEED:g} m/s, the fastest plausible "
                         "hang-off motion (a vessel heaves or surges at up to ~5 m/s in a "
                         "survival storm): check amplitude [m] and period [s]")
@@ -105,41 +219,61 @@ class TopMotion(Part):
                         "check amplitude [m] and period [s]")
 
     def _check_series_plausible(self, error) -> None:
-        """Refuse a time series with a segment faster than :data:`MAX_TOP_SPEED`, or one
-        that jumps at t = 0 (a first displacement other than 0 without a ramp: the
-        hang-off starts from its static position)."""
-        t, d = self.times, self.displacements
+        """Refuse a time series with a segment faster than :data:`MAX_TOP_SPEED` (the
+        resultant of its axes), or one that jumps at t = 0 (a first displacement other
+        than 0 without a ramp: the hang-off starts from its static position)."""
+        t, series = self.times, self.series
+        name = (lambda k: "displacements") if self.axis is not None else (
+            lambda k: f"displacements_{k}")
         for i in range(1, len(t)):
-            speed = abs(d[i] - d[i - 1]) / (t[i] - t[i - 1])
+            speed = math.sqrt(sum((d[i] - d[i - 1]) ** 2 for d in series.values())) / (
+                t[i] - t[i - 1])
             if speed > MAX_TOP_SPEED:
-                raise error(f"displacements[{i}]", f"moves the hang-off at {speed:.4g} m/s "
+                k = max(series, key=lambda a: abs(series[a][i] - series[a][i - 1]))
+                d = series[k]
+                raise error(f"{name(k)}[{i}]", f"moves the hang-off at {speed:.4g} m/s "
                             f"from times[{i - 1}] = {t[i - 1]:g} s to times[{i}] = {t[i]:g} "
                             f"s ({d[i - 1]:g} m to {d[i]:g} m): must be <= "
                             f"{MAX_TOP_SPEED:g} m/s, the fastest plausible hang-off motion "
                             "(a vessel heaves or surges at up to ~5 m/s in a survival "
                             "storm): check times [s] and displacements [m]")
-        if abs(d[0]) > START_JUMP and self.ramp == 0.0:
-            raise error("displacements[0]", "must be 0 m without a ramp (the hang-off starts "
-                        "from its static position, and the series holds its first "
-                        "displacement from t = 0: a jump at the start), got "
-                        f"{d[0]:g}; start the series at 0 or set ramp_time")
+        for k, d in series.items():
+            if abs(d[0]) > START_JUMP and self.ramp == 0.0:
+                raise error(f"{name(k)}[0]", "must be 0 m without a ramp (the hang-off starts "
+                            "from its static position, and the series holds its first "
+                            "displacement from t = 0: a jump at the start), got "
+                            f"{d[0]:g}; start the series at 0 or set ramp_time")
 
     @property
     def peak_speed(self) -> float:
-        """Peak speed [m/s] of the motion without its ramp: 2 pi A / T (harmonic), the
-        steepest segment of a time series."""
+        """Peak speed [m/s] of the motion without its ramp: 2 pi A / T (harmonic; an
+        orbit's resultant amplitude, an upper bound), the steepest segment of a time
+        series (the resultant of its axes)."""
         if self.times is None:
-            return 2.0 * math.pi * self.amplitude / self.period
-        t, d = self.times, self.displacements
-        return max(abs(d[i] - d[i - 1]) / (t[i] - t[i - 1]) for i in range(1, len(t)))
+            return 2.0 * math.pi * self.resultant_amplitude / self.period
+        t, series = self.times, self.series
+        return max(math.sqrt(sum((d[i] - d[i - 1]) ** 2 for d in series.values()))
+                   / (t[i] - t[i - 1]) for i in range(1, len(t)))
+
+    @property
+    def reach(self) -> float:
+        """The largest displacement [m] from the static hang-off (an upper bound for an
+        orbit: its resultant amplitude)."""
+        if self.times is None:
+            return self.resultant_amplitude
+        n = len(self.times)
+        return max(math.sqrt(sum(d[i] ** 2 for d in self.series.values())) for i in range(n))
 
     @property
     def lowest_displacement(self) -> float:
-        """The lowest displacement [m] the motion reaches, ramp included (<= 0): -A
-        (harmonic), min(0, displacements) (a ramp scales the series towards 0)."""
+        """The lowest vertical displacement [m] the motion reaches, ramp included (<= 0):
+        -A_y (harmonic), min(0, displacements along y) (a ramp scales the series towards
+        0); 0 without a vertical part."""
+        if not self.moves("y"):
+            return 0.0
         if self.times is None:
-            return -float(self.amplitude)
-        low = min(self.displacements)
+            return -float(self.amplitudes[1] if self.is_orbit else self.amplitude)
+        low = min(self.series["y"])
         return min(0.0, low) if self.ramp > 0.0 else float(low)
 
     @property

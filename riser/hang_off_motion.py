@@ -32,19 +32,30 @@ def scene_components(scene):
     return scene.waves.components(scene.water_depth, scene.gravity, (x, z))
 
 
+def top_motion_displacement(scene, t) -> np.ndarray:
+    """(3, nt) displacement [m] of the scene's top motion at times t [s] (along its axis,
+    an orbit or a series per axis, :meth:`riser.dynamics.TopMotion.displacement`, times
+    the half-cosine ramp; zeros without one)."""
+    t = np.atleast_1d(np.asarray(t, float))
+    dyn = scene.dynamics
+    tm = dyn.top_motion if dyn is not None else None
+    if tm is None:
+        return np.zeros((3, t.size))
+    return tm.displacement(t) * half_cosine_ramp(t, tm.ramp)[None, :]
+
+
 def axis_displacement(scene, t) -> np.ndarray:
-    """The top motion's displacement d(t) [m] along its axis at times t [s] (harmonic A
-    sin(2 pi t / T) or the time series, times the half-cosine ramp; zeros without one)."""
+    """The top motion's displacement d(t) [m] along its one axis at times t [s] (harmonic
+    A sin(2 pi t / T) or the time series, times the half-cosine ramp; zeros without
+    one). A motion along several axes has no one axis: ValueError."""
     t = np.asarray(t, float)
     dyn = scene.dynamics
     tm = dyn.top_motion if dyn is not None else None
     if tm is None:
         return np.zeros_like(t)
-    if tm.times is not None:
-        d = np.interp(t, tm.times, tm.displacements)
-    else:
-        d = tm.amplitude * np.sin(2.0 * math.pi * t / tm.period)
-    return d * half_cosine_ramp(t, tm.ramp)
+    if not tm.one_axis:
+        raise ValueError("a motion along several axes: use top_motion_displacement")
+    return top_motion_displacement(scene, t)["xyz".index(tm.axis)].reshape(t.shape)
 
 
 def half_cosine_ramp(t, ramp: float) -> np.ndarray:
@@ -76,7 +87,8 @@ def vessel_amplitudes(scene, comp=None) -> tuple[np.ndarray, np.ndarray]:
 
 class HangOffPath:
     """The scene's prescribed hang-off path, set up once: ``path(t)`` is the (3, nt)
-    displacement [m] at times t [s]: the top motion along its axis, or the vessel's RAO
+    displacement [m] at times t [s]: the top motion (an axis, an orbit, a series per
+    axis), or the vessel's RAO
     motion times the waves' ramp (zeros with neither)."""
 
     def __init__(self, scene):
@@ -91,7 +103,7 @@ class HangOffPath:
         t = np.atleast_1d(np.asarray(t, float))
         out = np.zeros((3, t.size))
         if self.top_motion is not None:
-            out["xyz".index(self.top_motion.axis)] = axis_displacement(self.scene, t)
+            out = top_motion_displacement(self.scene, t)
         elif self.vessel is not None:
             omega, D, ramp = self.vessel
             out = (D @ np.exp(1j * np.outer(omega, t))).real * half_cosine_ramp(t, ramp)

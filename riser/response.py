@@ -88,4 +88,20 @@ def harmonic_motion(scene) -> tuple[str, float, float]:
         raise SceneError(scene.source, "dynamics.top_motion.times", "the harmonic response "
                          "needs a harmonic motion (amplitude and period), not a time series: "
                          "the frequency domain is harmonic")
+    if not tm.one_axis:
+        raise SceneError(scene.source, "dynamics.top_motion.amplitudes", "this takes a "
+                         "harmonic motion along one axis (axis, amplitude, period); an orbit "
+                         "runs with `solve` and the frequency domain's solve_harmonic")
     return tm.axis, tm.amplitude, tm.period
+
+
+def harmonic_motion_vector(scene) -> tuple[np.ndarray, float]:
+    """((3,) complex amplitudes [m], period [s]) of the scene's harmonic
+    [dynamics.top_motion], along one axis or an orbit (d = Re(D e^{i omega t})); the
+    refusals of :func:`harmonic_motion` for none or a time series."""
+    dyn = scene.dynamics
+    tm = dyn.top_motion if dyn is not None else None
+    if tm is not None and tm.is_orbit:
+        return tm.complex_amplitudes(), float(tm.period)
+    axis, amplitude, period = harmonic_motion(scene)
+    return motion_amplitudes(axis, amplitude), period

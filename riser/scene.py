@@ -261,7 +261,7 @@ class Scene:
         the hang-off height)."""
         dyn, e = self.dynamics, self.ends
         tm = None if dyn is None else dyn.top_motion
-        if tm is None or tm.axis != "y":
+        if tm is None or not tm.moves("y"):
             return
         if isinstance(e, FixedEnds):
             top = e.hang_off[1]
@@ -271,8 +271,9 @@ class Scene:
             return
         low = tm.lowest_displacement
         if top + low <= 0.0:
-            key = "amplitude" if tm.times is None else (
-                f"displacements[{tm.displacements.index(min(tm.displacements))}]")
+            ys = tm.series.get("y")
+            key = (("amplitudes[1]" if tm.is_orbit else "amplitude") if ys is None else
+                   f"displacements{'' if tm.one_axis else '_y'}[{ys.index(min(ys))}]")
             raise self.error(f"dynamics.top_motion.{key}", f"moves the hang-off {-low:g} m "
                              f"down from its height {top:g} m, to or below the seabed y = 0: "
                              f"must be < {top:g} m down")
@@ -365,8 +366,10 @@ class Scene:
             return ("environment.current.heading_deg", f"the current's heading "
                     f"{cur.heading_deg:g} deg is out of the x-y plane")
         tm = None if self.dynamics is None else self.dynamics.top_motion
-        if tm is not None and tm.axis == "z" and not statics:
-            return ("dynamics.top_motion.axis", "the hang-off moves along z, out of plane")
+        if tm is not None and tm.moves("z") and not statics:
+            key = ("axis" if tm.one_axis else "amplitudes" if tm.is_orbit
+                   else "displacements_z")
+            return (f"dynamics.top_motion.{key}", "the hang-off moves along z, out of plane")
         return None if statics else sea_state_out_of_plane(self)
 
     def replace(self, **changes: Any) -> Scene:

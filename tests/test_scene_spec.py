@@ -285,9 +285,13 @@ def expected_line_type(name: str, t: dict) -> dict:
 def expected_dynamics(dyn: dict) -> dict:
     tm = dyn.get("top_motion")
     motion = None if tm is None else {
-        "axis": tm["axis"], "amplitude": tm.get("amplitude", 0.0), "period": tm.get("period", 0.0),
+        "axis": tm.get("axis"), "amplitude": tm.get("amplitude", 0.0),
+        "period": tm.get("period", 0.0),
         "times": tuple(tm["times"]) if "times" in tm else None,
         "displacements": tuple(tm["displacements"]) if "displacements" in tm else None,
+        "amplitudes": _numbers(tm.get("amplitudes")),
+        "phases_deg": _numbers(tm.get("phases_deg", [0.0, 0.0, 0.0])),
+        **{f"displacements_{k}": _numbers(tm.get(f"displacements_{k}")) for k in "xyz"},
         "ramp_time": tm.get("ramp_time")}
     return {"duration": dyn["duration"],
             "output_interval": dyn.get("output_interval", min(1.0, dyn["duration"])),

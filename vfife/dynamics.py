@@ -18,7 +18,7 @@ node by node by the immersed fraction of the node's stretch of line (see
 leaves the water). Damping: ``[dynamics]
 damping`` [1/s], mass-proportional (structural; default 0), on top of the drag.
 
-Top motion: ``top0 + d(t) axis`` with d(t) from :func:`riser.hang_off_motion.axis_displacement`, multiplied by
+Top motion: ``top0 + d(t)`` with d(t) (3,) from :class:`riser.hang_off_motion.HangOffPath`, multiplied by
 a half-cosine ramp over ``ramp_time`` (default one period of a harmonic motion: an
 impulsive start rings the line axially for the whole run).
 
@@ -116,8 +116,7 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
     tmax = float(np.max(np.abs(static.nodal_results()["element_tension"])))
     # a node that can leave the water loses its added mass: its transverse step is then
     # shorter by sqrt(m / (m + m_a)) (0.75 for Yu's flexible riser)
-    reach = 0.0 if tm is None else (tm.amplitude if tm.times is None
-                                    else float(np.max(np.abs(tm.displacements))))
+    reach = 0.0 if tm is None else tm.reach
     trough = 0.0
     comp = scene_components(scene) if scene.waves is not None else None
     if comp is not None:             # the surface comes down by the waves' amplitudes

@@ -380,10 +380,5 @@ def max_speed_hint(scene: Scene) -> float:
     v = scene.current.max_abs_speed if scene.current is not None else 0.0
     dyn = scene.dynamics
     if dyn is not None and dyn.top_motion is not None:
-        tm = dyn.top_motion
-        if tm.times is None:
-            v += 2.0 * math.pi * tm.amplitude / tm.period
-        else:
-            d = np.abs(np.diff(tm.displacements) / np.diff(tm.times))
-            v += float(np.max(d)) if len(d) else 0.0
+        v += dyn.top_motion.peak_speed        # harmonic 2 pi A / T, a series' steepest
     return v

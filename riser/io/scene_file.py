@@ -381,10 +381,17 @@ def _read_dynamics(t: Table) -> Dynamics:
     values = t.fields(Dynamics)
     tm = t.table("top_motion")
     if tm is not None:
-        motion = tm.fields(TopMotion, names=("axis", "ramp_time"))
-        form = (("times", "displacements") if tm.has("times") or tm.has("displacements")
-                else ("amplitude", "period"))
-        motion.update(tm.fields(TopMotion, names=form, required=form))
+        per_axis = any(tm.has(f"displacements_{k}") for k in "xyz")
+        if per_axis:                                  # a series per axis
+            required = ("times",)
+        elif tm.has("times") or tm.has("displacements"):
+            required = ("axis", "times", "displacements")
+        elif tm.has("amplitudes"):                    # an orbit
+            required = ("amplitudes", "period")
+        else:
+            required = ("axis", "amplitude", "period")
+        # every key given: the part's own checks name what does not belong to the form
+        motion = tm.fields(TopMotion, required=required)
         tm.finish()
         values["top_motion"] = tm.build(TopMotion, **motion)
     t.finish()

@@ -108,9 +108,9 @@ def run_harmonic(scene: Scene, folder, *, segment_length: float = 10.0, profile=
     """
     dyn = scene.dynamics
     tm = dyn.top_motion if dyn is not None else None
-    if tm is None or tm.times is not None:
+    if tm is None or tm.times is not None or not tm.one_axis:
         raise SceneError(scene.name, "dynamics.top_motion", "the MoorDyn harmonic run needs "
-                         "a harmonic top motion (amplitude and period)")
+                         "a harmonic top motion along one axis (axis, amplitude and period)")
     require()
     import cmoordyn
     import moordyn
