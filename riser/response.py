@@ -90,8 +90,8 @@ def harmonic_motion(scene) -> tuple[str, float, float]:
                          "the frequency domain is harmonic")
     if not tm.one_axis:
         raise SceneError(scene.source, "dynamics.top_motion.amplitudes", "this takes a "
-                         "harmonic motion along one axis (axis, amplitude, period); an orbit "
-                         "runs with `solve` and the frequency domain's solve_harmonic")
+                         "harmonic motion along one axis (axis, amplitude, period), not an "
+                         "orbit (harmonic_motion_vector takes both)")
     return tm.axis, tm.amplitude, tm.period
 
 

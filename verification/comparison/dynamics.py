@@ -109,6 +109,10 @@ class DynamicComparison:
 
 #: the ``axis`` of a comparison driven by a regular wave (and the vessel's motion in it)
 WAVE = "wave"
+#: the axis label of a comparison driven by an orbit (a harmonic motion along several
+#: axes, [dynamics.top_motion] amplitudes); its amplitudes scale the orbit by its
+#: largest axis amplitude
+ORBIT = "orbit"
 
 
 def is_wave(scene: Scene) -> bool:
@@ -164,13 +168,35 @@ def check_motions(scene: Scene, amplitudes=None) -> tuple[str, float, list[float
     UnsupportedSceneError naming the key (exit 2)."""
     if is_wave(scene):
         return check_waves(scene, amplitudes)
-    axis, amp0, period = harmonic_motion(scene)
+    tm = scene.dynamics.top_motion if scene.dynamics is not None else None
+    if tm is not None and tm.is_orbit:
+        axis, amp0, period = ORBIT, max(tm.amplitudes), tm.period
+    else:
+        axis, amp0, period = harmonic_motion(scene)
     amps = sorted(amplitudes) if amplitudes else [amp0]
     for a in amps:
-        scene.replace(**{"dynamics.top_motion.amplitude": a})      # its checks, its key
+        if axis == ORBIT:                                          # its checks, its key
+            scene.replace(**{"dynamics.top_motion.amplitudes": orbit_amplitudes(tm, a)})
+        else:
+            scene.replace(**{"dynamics.top_motion.amplitude": a})
         if isinstance(scene.ends, FixedEnds):
-            require_harmonic(scene, motion_amplitudes(axis, a))
+            require_harmonic(scene, motion_vector(scene, axis, a))
     return axis, period, amps
+
+
+def orbit_amplitudes(tm: TopMotion, a: float) -> tuple[float, ...]:
+    """The orbit's (x, y, z) amplitudes [m] scaled so that the largest is ``a`` [m]."""
+    f = a / max(tm.amplitudes)
+    return tuple(f * v for v in tm.amplitudes)
+
+
+def motion_vector(scene: Scene, axis: str, a: float) -> np.ndarray:
+    """(3,) complex amplitudes [m] of the comparison's motion at amplitude ``a`` [m]:
+    along ``axis``, or the scene's orbit scaled to ``a`` (:data:`ORBIT`)."""
+    if axis != ORBIT:
+        return motion_amplitudes(axis, a)
+    tm = scene.dynamics.top_motion
+    return tm.complex_amplitudes() * (a / max(tm.amplitudes))
 
 
 def check_period(scene: Scene, period: float, element_length: float, static) -> None:
@@ -214,8 +240,13 @@ def dynamic_scene(scene: Scene, axis: str, amplitude: float, period: float,
     statics."""
     dyn = scene.dynamics
     total = (ramp + settle + WINDOW_PERIODS) * period
-    motion = None if axis == WAVE else TopMotion(axis=axis, amplitude=amplitude,
-                                                 period=period, ramp_time=ramp * period)
+    if axis == ORBIT:
+        tm = dyn.top_motion
+        motion = TopMotion(amplitudes=orbit_amplitudes(tm, amplitude), period=period,
+                           phases_deg=tm.phases_deg, ramp_time=ramp * period)
+    else:
+        motion = None if axis == WAVE else TopMotion(axis=axis, amplitude=amplitude,
+                                                     period=period, ramp_time=ramp * period)
     new = Dynamics(duration=total, output_interval=period / SAMPLES_PER_PERIOD,
                    top_motion=motion, damping=dyn.damping if dyn is not None else 0.0,
                    statistics_start=(ramp + settle) * period,
@@ -275,7 +306,7 @@ def compare_dynamics(scene: Scene, *, amplitudes=None, element_length: float | N
             fd = solve_harmonic(wave_scene(fd_scene, a),
                                 static=static if fd_modifier is None else None)
         else:
-            fd = solve_harmonic(fd_scene, period, motion_amplitudes(axis, a),
+            fd = solve_harmonic(fd_scene, period, motion_vector(matched, axis, a),
                                 static=static if fd_modifier is None else None)
         if fd.status.value == "refused":
             raise UnsupportedSceneError(fd.message)

@@ -26,7 +26,8 @@ from verification.report.figures import new_figure, save
 from verification.report.markdown import GENERATED_NOTE, fmt, md_table, pct
 
 from .dynamic_rows import DRIFT_LIMIT, TOLERANCES
-from .dynamics import RAMP_PERIODS, SETTLE_PERIODS, WAVE, WINDOW_PERIODS, DynamicComparison
+from .dynamics import (ORBIT, RAMP_PERIODS, SETTLE_PERIODS, WAVE, WINDOW_PERIODS,
+                       DynamicComparison)
 
 FILES = ("dynamic_agreement.csv", "stations.csv", "response.csv", "transfer.csv",
          "transfer_along_s.csv", "response.png", "sweep.png", "transfer.png", "report.md")
@@ -45,7 +46,7 @@ def transfer(dc: DynamicComparison) -> tuple[pd.DataFrame, pd.DataFrame]:
     smallest amplitude of the sweep: (the hang-off tension and the largest moment and
     curvature per period, the tension, moment and curvature amplitudes along s at
     :data:`TRANSFER_STATIONS` stations per period)."""
-    if dc.axis == WAVE:                    # transfer functions per unit hang-off motion
+    if dc.axis in (WAVE, ORBIT):    # transfer functions per unit motion along one axis
         return pd.DataFrame(), pd.DataFrame()
     lo, hi = TRANSFER_SPAN
     periods = dc.period * np.geomspace(lo, hi, TRANSFER_PERIODS)
@@ -126,6 +127,13 @@ def markdown(dc: DynamicComparison, static_markdown: str = "", peer_markdown: st
                                       "the hang-off fixed") + (
                      "; the line loaded by the wave (Morison drag and inertia)"
                      if dc.scene.waves.line_loads else "; no wave load on the line") + ".")
+    elif dc.axis == ORBIT:
+        tm = dc.scene.dynamics.top_motion
+        drive = (f"- Orbit: d_k(t) = A_k sin(2 pi t / T + phi_k), T = {dc.period:g} s, the "
+                 f"scene's amplitudes (x, y, z) = ({', '.join(f'{v:g}' for v in tm.amplitudes)})"
+                 f" m scaled so that the largest is A = {amps} m, phase leads "
+                 f"({', '.join(f'{v:g}' for v in tm.phases_deg)}) deg; no transfer "
+                 "functions (they are per unit motion along one axis).")
     else:
         drive = (f"- Motion: d(t) = A sin(2 pi t / T) along {dc.axis}, T = {dc.period:g} s, "
                  f"A = {amps} m.")

@@ -18,7 +18,7 @@ import numpy as np
 import pandas as pd
 
 from verification.comparison.dynamic_rows import wrap_deg
-from verification.comparison.dynamics import RAMP_PERIODS, SETTLE_PERIODS, dynamic_scene
+from verification.comparison.dynamics import ORBIT, RAMP_PERIODS, SETTLE_PERIODS, dynamic_scene
 from verification.report.markdown import md_table, pct
 
 #: MoorDyn's tolerance: its 10 m segments lump the line's inertia at the nodes, its end
@@ -39,6 +39,10 @@ def dynamic(dc, out, progress=None) -> tuple[str, list[str]]:
     if not dc.matched.statics_planar:      # the first harmonics it is read against are planar
         why = ("not run: its first harmonic is read against the frequency domain's about a "
                "planar static state, and this scene's is 3D")
+        return (f"\n## MoorDyn (third opinion, not in the verdict)\n\nMoorDyn {why}.\n",
+                [f"  moordyn: {why}"])
+    if dc.axis == ORBIT:                   # its coupled point is driven along one axis
+        why = "not run: its harmonic run drives the hang-off along one axis, not an orbit"
         return (f"\n## MoorDyn (third opinion, not in the verdict)\n\nMoorDyn {why}.\n",
                 [f"  moordyn: {why}"])
     r0 = dc.results[0]
