@@ -98,6 +98,15 @@ def _stop(pool) -> None:
     if pool is None:
         return
     procs = list((getattr(pool, "_processes", None) or {}).values())
+    # the executor's manager thread, shutting down, closes its call queue and joins the
+    # queue's feeder thread; with the workers terminated no one reads that pipe, and a
+    # feeder blocked on a full pipe would hold the join, the manager thread, and the
+    # interpreter's exit (which joins it) for ever: the queue's join is cancelled first
+    # (its unsent items are dropped units of an interrupted run). Seen once as a sweep
+    # that did not exit within 60 s of a Ctrl-C 1 s after its start (not reproduced).
+    queue = getattr(pool, "_call_queue", None)
+    if queue is not None:
+        queue.cancel_join_thread()
     pool.shutdown(wait=False, cancel_futures=True)
     for proc in procs:
         proc.terminate()
