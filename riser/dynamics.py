@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .response import motion_amplitudes
 from .spec import Part, check_fields, part_error, spec
 
 HARMONIC = "required (harmonic)"
@@ -167,13 +168,10 @@ class TopMotion(Part):
     def complex_amplitudes(self):
         """(3,) complex amplitudes D [m] of a harmonic motion, d(t) = Re(D e^{i omega t}):
         A sin(omega t + phi) is Re(-i A e^{i phi} e^{i omega t})."""
-        out = np.zeros(3, complex)
-        if self.amplitudes is not None:
-            for k in range(3):
-                out[k] = -1j * self.amplitudes[k] * np.exp(1j * math.radians(self.phases_deg[k]))
-        else:
-            out["xyz".index(self.axis)] = -1j * self.amplitude
-        return out
+        if self.amplitudes is None:
+            return motion_amplitudes(self.axis, self.amplitude)
+        return np.array([-1j * a * np.exp(1j * math.radians(phi))
+                         for a, phi in zip(self.amplitudes, self.phases_deg)])
 
     def displacement(self, t):
         """(3, nt) displacement [m] at times t [s] without the ramp."""

@@ -38,6 +38,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .design.wall import pressures, wall_at
+from .design.wall import wall_tension as of_wall
 from .errors import SceneError
 from .spec import Part, spec
 
@@ -140,17 +142,9 @@ def check_internal_flow(scene) -> None:
 
 def wall_tension(scene, s, y, tension) -> np.ndarray:
     """Wall tension T_w [N] at stations s [m] of heights y [m] with effective tension
-    ``tension`` [N] (see the module docstring; y[-1] is the hang-off)."""
-    flow = scene.internal_flow
-    s, y, te = (np.asarray(a, float) for a in (s, y, tension))
-    ends = np.cumsum([seg.length for seg in scene.segments])
-    idx = np.clip(np.searchsorted(ends, s, side="left"), 0, len(ends) - 1)
-    lts = [scene.line_types[seg.line_type] for seg in scene.segments]
-    a_i = np.array([math.pi / 4.0 * lt.inner_diameter ** 2 for lt in lts])[idx]
-    a_o = np.array([math.pi / 4.0 * lt.outer_diameter ** 2 for lt in lts])[idx]
-    rho_c = np.array([lt.contents_density for lt in lts])[idx]
-    g = scene.gravity
-    p_o = scene.water_density * g * (scene.water_depth - y)
-    p_i = flow.top_pressure + rho_c * g * (y[-1] - y)
-    mu = contents_mass_per_length(scene)
-    return te + mu * flow.speed ** 2 + p_i * a_i - p_o * a_o
+    ``tension`` [N] (see the module docstring; y[-1] is the hang-off): the wall's
+    pressures and tension of :mod:`riser.design.wall` with the flow's ``top_pressure``."""
+    y = np.asarray(y, float)
+    wall = wall_at(scene, s)
+    p_i, p_e = pressures(scene, wall, y, float(y[-1]), scene.internal_flow.top_pressure)
+    return of_wall(scene, wall, tension, p_i, p_e)

@@ -44,6 +44,7 @@ class DynamicDesign:
         self.keep = self.design.fatigue is not None
         self.record: list[np.ndarray] = []
         self.times: list[float] = []
+        self._fatigue: dict | None = None         # the record's count, once
 
     def components(self, x, tangents, moment_vectors):
         """(M_in, M_out) [N m] of bending-moment vectors (n, 3) at stations with positions
@@ -96,7 +97,7 @@ class DynamicDesign:
         ``[design.fatigue]`` or with fewer than 3 samples); computed once."""
         if not self.keep or len(self.times) < 3:
             return None
-        if getattr(self, "_fatigue", None) is None:
+        if self._fatigue is None:
             rec = np.asarray(self.record)                     # (k, 3, n)
             duration = self.times[-1] - self.times[0]
             self._fatigue = time_domain(self.scene, self.s, rec[:, 0], rec[:, 1], rec[:, 2],

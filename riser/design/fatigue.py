@@ -23,7 +23,7 @@ import numpy as np
 from .rainflow_damage import series_damage
 from .sn_curves import sn_curve
 from .spectral_fatigue import dirlik_damage_rate, narrow_band_damage_rate
-from .wall import Wall, fibre_stress, wall_at
+from .wall import fibre_stress, wall_at
 
 #: a Julian year [s]
 SECONDS_PER_YEAR = 365.25 * 86400.0
@@ -34,21 +34,6 @@ CHUNK = 64
 def angles(points: int) -> np.ndarray:
     """The points' angles phi_j = 2 pi j / points [rad] from the in-plane normal."""
     return 2.0 * math.pi * np.arange(points) / points
-
-
-def reversals(x: np.ndarray) -> np.ndarray:
-    """The series reduced to its first sample, its turning points and its last sample
-    (repeated values dropped): the points the rainflow count uses (ASTM E1049 counts
-    the reversals only), so counting them gives the same cycles, faster."""
-    x = np.asarray(x, float)
-    if x.size < 3:
-        return x
-    x = x[np.concatenate([[True], np.diff(x) != 0.0])]
-    if x.size < 3:
-        return x
-    d = np.diff(x)
-    turn = np.flatnonzero(d[:-1] * d[1:] < 0.0) + 1
-    return x[np.concatenate([[0], turn, [x.size - 1]])]
 
 
 def life_years(damage, seconds: float) -> np.ndarray:
@@ -75,11 +60,11 @@ def time_domain(scene, s, wall_tension, moment_in, moment_out, duration: float) 
     worst = np.zeros(n)
     for a in range(0, n, CHUNK):
         b = min(a + CHUNK, n)
-        sig = fibre_stress(_slice(wall, a, b), wall_tension[:, a:b], moment_in[:, a:b],
+        sig = fibre_stress(wall.take(slice(a, b)), wall_tension[:, a:b], moment_in[:, a:b],
                            moment_out[:, a:b], phi)                       # (k, c, p)
         for i in range(a, b):
             thick = fat.thickness or float(wall.thickness[i])
-            d = np.array([series_damage(reversals(sig[:, i - a, j]), curve, thick, fat.scf)
+            d = np.array([series_damage(sig[:, i - a, j], curve, thick, fat.scf)
                           for j in range(fat.points)])
             j = int(np.argmax(d))
             damage[i], worst[i] = d[j], math.degrees(phi[j])
@@ -88,12 +73,6 @@ def time_domain(scene, s, wall_tension, moment_in, moment_out, duration: float) 
     return {"fatigue_damage": damage, "fatigue_life": life, "fatigue_angle_deg": worst,
             "fatigue_record_s": float(duration), "max_fatigue_damage": float(damage[k]),
             "min_fatigue_life": float(life[k]), "min_fatigue_life_s": float(s[k])}
-
-
-def _slice(wall: Wall, a: int, b: int) -> Wall:
-    return Wall(*(np.asarray(getattr(wall, f))[a:b] for f in
-                  ("outer_diameter", "inner_diameter", "yield_strength",
-                   "tensile_strength", "youngs_modulus", "contents_density")))
 
 
 def stress_transfer(scene, s, h_tension, h_moment_in, h_moment_out, h_dy) -> np.ndarray:

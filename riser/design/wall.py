@@ -36,12 +36,12 @@ compression side of the resultant moment.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
 import numpy as np
 
-from ..internal_flow import contents_mass_per_length
 
 
 @dataclass(frozen=True)
@@ -77,6 +77,10 @@ class Wall:
     def outer_area(self) -> np.ndarray:
         return math.pi / 4.0 * self.outer_diameter ** 2
 
+    def take(self, index) -> "Wall":
+        """The wall at some of its stations (an index or slice of the arrays)."""
+        return Wall(**{f.name: getattr(self, f.name)[index] for f in dataclasses.fields(self)})
+
 
 def wall_at(scene, s) -> Wall:
     """The wall of the segments at arc lengths ``s`` [m] from the bottom end (a station
@@ -100,20 +104,27 @@ def wall_at(scene, s) -> Wall:
                 contents_density=column(lambda lt: lt.contents_density))
 
 
-def pressures(scene, wall: Wall, y, y_top: float) -> tuple[np.ndarray, np.ndarray]:
-    """(p_i, p_e) [Pa, gauge] at heights ``y`` [m] with the hang-off at ``y_top`` [m]."""
+def pressures(scene, wall: Wall, y, y_top: float,
+              top_pressure: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """(p_i, p_e) [Pa, gauge] at heights ``y`` [m] with the hang-off at ``y_top`` [m];
+    ``top_pressure`` [Pa] the contents' at the hang-off (default the design's,
+    :meth:`riser.design.part.Design.top_pressure`)."""
     y = np.asarray(y, float)
     g = scene.gravity
+    if top_pressure is None:
+        top_pressure = scene.design.top_pressure(scene)
     p_e = scene.water_density * g * (scene.water_depth - y)
-    p_i = scene.design.top_pressure(scene) + wall.contents_density * g * (y_top - y)
+    p_i = top_pressure + wall.contents_density * g * (y_top - y)
     return p_i, p_e
 
 
 def wall_tension(scene, wall: Wall, tension, p_i, p_e) -> np.ndarray:
-    """T_w [N] from the effective tension [N] and the pressures [Pa] (module docstring)."""
+    """T_w [N] from the effective tension [N] and the pressures [Pa] (module docstring;
+    the contents' mass per length mu = rho_c pi d^2 / 4 of the wall's bore)."""
     flux = 0.0
     if scene.internal_flow is not None:
-        flux = contents_mass_per_length(scene) * scene.internal_flow.speed ** 2
+        mu = wall.contents_density * math.pi / 4.0 * wall.inner_diameter ** 2
+        flux = mu * scene.internal_flow.speed ** 2
     return np.asarray(tension, float) + flux + p_i * wall.bore_area - p_e * wall.outer_area
 
 

@@ -31,7 +31,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from riser.design.checks import amplitude_columns
-from riser.design.fatigue import SECONDS_PER_YEAR, reversals, spectral, stress_transfer
+from riser.design.fatigue import SECONDS_PER_YEAR, spectral, stress_transfer
 from riser.design.rainflow_damage import series_damage
 from riser.design.sn_curves import sn_curve
 from riser.design.wall import wall_at
@@ -139,7 +139,7 @@ def fd_record_damage(scene, s, q_sigma, omega, start: float, record: float) -> n
     for i in range(len(s)):
         series = (rot @ q_sigma[:, i, :]).real                              # (n_t, p)
         thick = fat.thickness or float(wall.thickness[i])
-        out[i] = max(float(series_damage(reversals(series[:, j]), curve, thick, fat.scf))
+        out[i] = max(float(series_damage(series[:, j], curve, thick, fat.scf))
                      for j in range(series.shape[1]))
     return out
 
