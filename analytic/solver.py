@@ -73,6 +73,17 @@ def settings_of(scene: Scene) -> AnalyticSettings:
 def line_of(scene: Scene) -> Line:
     """The single section of ``scene``; raises UnsupportedSceneError for anything else."""
     src = scene.source
+    plain = getattr(scene.ends, "plain", True)
+    if not plain:
+        raise UnsupportedSceneError(
+            f"{src}: ends: the analytic method's catenary is pinned at both ends' positions "
+            "(a joint, a tensioner or a free end has no closed form here): use --method bvp "
+            "or --method vfife")
+    if scene.attachments:
+        raise UnsupportedSceneError(
+            f"{src}: attachments: the analytic method's catenary has no point loads (a "
+            "two-catenary closed form is a test, not a method here): use --method bvp or "
+            "--method vfife")
     if scene.current is not None:
         raise UnsupportedSceneError(
             f"{src}: environment.current: the analytic method has no drag (a catenary under "

@@ -62,7 +62,8 @@ from .layout import Layout
 
 NSTATE = 6
 IX, IY, ITH, IM, IF, IT = range(NSTATE)
-NCOEF = 6                      # the products a, a w, a/EI, a/EA, a c_n, a c_t
+NCOEF = 6                      # the products a, a w, a/EI, a/EA, a c_n, a c_t (+ the
+#                                point drag's, a 7th row, on a line with attachments)
 
 
 class LiftOffOutside(ValueError):
@@ -104,6 +105,8 @@ class BeamModel:
     layout: Layout | None = None
     zone_layout: Layout | None = None
     cut: int = 0
+    point_w: np.ndarray | None = None
+    point_c: np.ndarray | None = None
 
     #: states per block (the 3D rod, bvp/rod_equations.py, has 10)
     block = NSTATE
@@ -115,6 +118,10 @@ class BeamModel:
             self.EA = np.full_like(self.EI, np.inf)
         self.inv_EA = 1.0 / np.asarray(self.EA, float)       # 0 where inextensible
         self.starts = np.concatenate([[0.0], np.cumsum(self.lengths)])
+        zero = np.zeros_like(self.EI)
+        self.point_w = zero if self.point_w is None else np.asarray(self.point_w, float)
+        self.point_c = zero if self.point_c is None else np.asarray(self.point_c, float)
+        self.has_points = bool(np.any(self.point_w != 0.0) or np.any(self.point_c != 0.0))
         if self.layout is None:
             self.layout = Layout.proportional(self.lengths[self.line_segs])
 
@@ -193,6 +200,12 @@ class BeamModel:
         """(C, dC/dp) of one block: pieces ``segs`` of lengths ``L`` [m] on ``layout``;
         piece ``var``'s length moves with p by ``dL`` [m] (None: no parameter)."""
         base = self._unit(segs) * (L / layout.widths)[None, :]
+        if self.has_points:
+            # a point attachment is a piece of zero length (a = 0) carrying its net weight
+            # and drag coefficient over the piece's tau width: integrated across it they
+            # are the jump conditions of the force (bvp/points.py)
+            base[1] += self.point_w[segs] / layout.widths
+            base = np.vstack([base, self.point_c[segs] / layout.widths])
         kl, kr, lam = layout.blend(tau)
         C = (1.0 - lam) * base[:, kl] + lam * base[:, kr]
         if dL is None:
@@ -246,7 +259,7 @@ class BeamModel:
         """a du/ds for the SI state u (6, m) with the coefficient products C (6, m); linear
         in C (the blend and d/dp rely on it)."""
         y, th, M, F, T = u[IY], u[ITH], u[IM], u[IF], u[IT]
-        a, aw, aiEI, aiEA, acn, act = C
+        a, aw, aiEI, aiEA, acn, act = C[:NCOEF]
         c, s = np.cos(th), np.sin(th)
         e1 = a + T * aiEA
         d = np.empty_like(u)
@@ -262,6 +275,10 @@ class BeamModel:
             Vt = V * c
             d[IF] += acn * np.abs(Vn) * Vn
             d[IT] -= act * np.abs(Vt) * Vt
+            if self.has_points:          # a point's drag c_p |V| V along x, in n and t
+                q = C[NCOEF] * np.abs(V) * V
+                d[IF] -= q * s
+                d[IT] -= q * c
         if self.k_seabed > 0.0:
             p = a * self.seabed_reaction(y, linear)
             d[IF] += p * c
@@ -271,7 +288,7 @@ class BeamModel:
     def terms_jac(self, u: np.ndarray, C: np.ndarray, linear: bool) -> np.ndarray:
         """d terms / du, shape (6, 6, m)."""
         y, th, M, F, T = u[IY], u[ITH], u[IM], u[IF], u[IT]
-        a, aw, aiEI, aiEA, acn, act = C
+        a, aw, aiEI, aiEA, acn, act = C[:NCOEF]
         c, s = np.cos(th), np.sin(th)
         e1 = a + T * aiEA
         J = np.zeros((NSTATE, NSTATE, u.shape[1]))
@@ -296,6 +313,13 @@ class BeamModel:
             J[IF, IY] += 2.0 * acn * np.abs(Vn) * (-dV * s)
             J[IT, ITH] -= 2.0 * act * np.abs(Vt) * (-V * s)
             J[IT, IY] -= 2.0 * act * np.abs(Vt) * (dV * c)
+            if self.has_points:
+                q = C[NCOEF] * np.abs(V) * V
+                dq = 2.0 * C[NCOEF] * np.abs(V) * dV
+                J[IF, ITH] -= q * c
+                J[IF, IY] -= dq * s
+                J[IT, ITH] += q * s
+                J[IT, IY] -= dq * c
         if self.k_seabed > 0.0:
             pr = a * self.seabed_reaction(y, linear)
             dp = a * np.where(linear | (y < 0.0), -self.k_seabed, 0.0)       # d(a p)/dy

@@ -17,7 +17,7 @@ import math
 import numpy as np
 from scipy.optimize import brentq, least_squares
 
-from .catenary import catenary_state, pinned
+from .catenary import catenary_state, end_offsets, pinned
 
 
 class BVPFailure(RuntimeError):
@@ -30,18 +30,21 @@ class NoEquilibrium(BVPFailure):
 
 
 def state_guess(s, seg, w, Ls, EI, H, V0, ox, oy, scale, grounded: float = 0.0,
-                sink: float = 0.0, EA=None) -> np.ndarray:
+                sink: float = 0.0, EA=None, w_bend=None) -> np.ndarray:
     """Scaled state (6, m) at the unstretched arc lengths ``s`` [m] from the bottom end
     (``seg``: the segment index at each, for its EI [N m2] and weight w [N/m]): the
     catenary of suspended segment lengths ``Ls`` [m] through (ox, oy) with forces (H, V0)
     [N] there. With ``grounded`` > 0 [m] the line first lies straight at y = oy - sink [m]
     from x = ox - grounded, tension H, for that length before the catenary. ``EA`` (per
-    segment [N], None: inextensible) makes the catenary elastic."""
+    segment [N], None: inextensible) makes the catenary elastic. ``w_bend`` (per segment
+    [N/m]): the weights of the bending terms M and F where they differ from ``w`` (a point
+    attachment's short heavy segment: bvp/points.py)."""
     sc = np.asarray(s, float) - grounded
     on = sc < 0.0
     st = catenary_state(np.maximum(sc, 0.0), w, Ls, H, V0, ox, oy, EA)
-    EIk, wk = np.asarray(EI, float)[seg], np.asarray(w, float)[seg]
-    M = EIk * st["curvature"]
+    EIk = np.asarray(EI, float)[seg]
+    wk = np.asarray(w if w_bend is None else w_bend, float)[seg]
+    M = EIk * (st["curvature"] if w_bend is None else wk * H / st["tension"] ** 2)
     # d(kappa)/ds for kappa = w H / (H^2 + V^2), dV/ds = w
     F = EIk * (-2.0 * wk ** 2 * H * st["V"] / (H * H + st["V"] ** 2) ** 2)
     rows = [np.where(on, ox + sc, st["x"]), np.where(on, oy - sink, st["y"]),
@@ -247,6 +250,56 @@ def free_hanging(w, L, dx, dy, EA=None):
                          + (" (the line is too short: it must stretch to join them)" if short
                             else " (the starting-guess search did not converge)"))
     return math.exp(best.x[0]) * W, best.x[1] * W, L.copy()
+
+
+#: the horizontal tension of a vertical line's starting catenary, a fraction of the weight
+#: (H = 0 is the catenary's singular limit; this H makes the line vertical to 1e-9 rad)
+VERTICAL_H = 1.0e-9
+
+
+def vertical(w, L, dy, EA=None):
+    """(H, V0, Ls) of a line hanging between two ends on one vertical (a pinned TTR): H
+    tiny (:data:`VERTICAL_H`), V0 [N] the anchor's vertical force that makes the line
+    reach the height ``dy`` [m] (bracketed: the height rises with V0)."""
+    W = float(np.sum(np.abs(w) * L)) or 1.0
+    H = VERTICAL_H * W
+    if EA is None and float(np.sum(L)) <= dy:
+        raise BVPFailure(f"the line is too short: {span_words(L, 0.0, dy)}, and an "
+                         "inextensible line cannot stretch to join them")
+
+    def height(V0):
+        return end_offsets(w, L, H, V0, EA)[1] - dy
+
+    lo, hi = -W, W
+    while height(hi) < 0.0:
+        hi *= 2.0
+    while height(lo) > 0.0:
+        lo *= 2.0
+    return H, brentq(height, lo, hi, xtol=1e-12 * W), np.asarray(L, float).copy()
+
+
+def tensioned(w, L, dx, top_tension, EA=None):
+    """(H, V0, Ls) of a line pulled up by a tensioner of vertical force ``top_tension``
+    [N] from an anchor ``dx`` [m] behind the tensioner: V0 = top_tension - the weight, and
+    H [N] that puts the top at dx (tiny for dx = 0; the top's height follows)."""
+    W = float(np.sum(np.abs(w) * L)) or 1.0
+    V0 = top_tension - float(np.sum(w * L))
+    H = VERTICAL_H * W
+    if dx > 0.0 and end_offsets(w, L, H, V0, EA)[0] < dx:
+        hi = H
+        while end_offsets(w, L, hi, V0, EA)[0] < dx:
+            hi *= 4.0
+        H = brentq(lambda h: end_offsets(w, L, h, V0, EA)[0] - dx, hi / 4.0, hi,
+                   xtol=1e-12 * W)
+    return H, V0, np.asarray(L, float).copy()
+
+
+def hanging(w, L):
+    """(H, V0, Ls) of a line hanging from its top with a free lower end: V0 near 0 (the
+    free end's tension is zero; a thousandth of the weight keeps the starting catenary's
+    curvature small) and H tiny."""
+    W = float(np.sum(np.abs(w) * L)) or 1.0
+    return VERTICAL_H * W, 1e-3 * W, np.asarray(L, float).copy()
 
 
 # ------------------------------------------------------------- why a span has no form

@@ -155,6 +155,14 @@ def require_harmonic(scene: Scene, motion: np.ndarray) -> None:
     """Refuse what the frequency-domain model does not represent (before solving)."""
     src = scene.source
     require_linearisable(scene, "the frequency domain")
+    if not scene.ends.plain:
+        raise UnsupportedSceneError(
+            f"{src}: ends: the frequency domain holds both ends pinned in place; a joint, "
+            "a tensioner or a free end is in the VFIFE's time domain and the modes only")
+    if scene.attachments:
+        raise UnsupportedSceneError(
+            f"{src}: attachments: the frequency domain has no point masses or loads; a "
+            "point attachment's dynamics are the VFIFE's time domain only")
     fl = scene.internal_flow
     if fl is not None and (fl.speed != 0.0 or fl.has_slug):
         raise UnsupportedSceneError(

@@ -302,26 +302,36 @@ def _arpack_start(size: int) -> dict:
 
 def box_matrix(left: np.ndarray, right: np.ndarray, ends: tuple, end_value: float):
     """The sparse (CSC) matrix of the box scheme on N intervals of a state of n: the rows
-    of the end conditions first (``ends`` = (states zero at s = 0, states zero or given at
-    s = L), each the coefficient ``end_value`` on its state), then per interval j the n rows
-    ``left[j] Y[j] + right[j] Y[j+1]`` (``left``, ``right``: (N, n, n), real or complex);
-    unknowns Y[0], ..., Y[N] in order. The same pattern serves the modes' stiffness and
-    mass and the harmonic response."""
+    of the end conditions first (``ends`` = (rows at s = 0, rows at s = L), each row
+    ((state, coefficient), ...) of a linear form on the end's state, bvp/modal_ends.py, or
+    a state index held at zero; the coefficients times ``end_value``), then per interval j
+    the n rows ``left[j] Y[j] + right[j] Y[j+1]`` (``left``, ``right``: (N, n, n), real or
+    complex); unknowns Y[0], ..., Y[N] in order. The same pattern serves the modes'
+    stiffness and mass and the harmonic response."""
     N, n = left.shape[0], left.shape[1]
-    b0, b1 = ends
+    b0, b1 = (_rows(b) for b in ends)
     r0 = len(b0)
     R = np.broadcast_to(r0 + np.arange(N)[:, None, None] * n + np.arange(n)[None, :, None],
                         (N, n, n))
     C = np.broadcast_to(np.arange(N)[:, None, None] * n + np.arange(n)[None, None, :],
                         (N, n, n))
-    rows = np.concatenate([np.arange(r0), R.ravel(), R.ravel(),
-                           r0 + N * n + np.arange(len(b1))])
-    cols = np.concatenate([np.asarray(b0), C.ravel(), (C + n).ravel(),
-                           N * n + np.asarray(b1)])
-    vals = np.concatenate([np.full(r0, end_value), left.ravel(), right.ravel(),
-                           np.full(len(b1), end_value)])
+    er, ec, ev = [], [], []
+    for base, col0, rows in ((0, 0, b0), (r0 + N * n, N * n, b1)):
+        for r, row in enumerate(rows):
+            for i, coef in row:
+                er.append(base + r)
+                ec.append(col0 + i)
+                ev.append(end_value * coef)
+    rows = np.concatenate([np.asarray(er, int), R.ravel(), R.ravel()])
+    cols = np.concatenate([np.asarray(ec, int), C.ravel(), (C + n).ravel()])
+    vals = np.concatenate([np.asarray(ev), left.ravel(), right.ravel()])
     size = (N + 1) * n
     return coo_matrix((vals, (rows, cols)), shape=(size, size)).tocsc()
+
+
+def _rows(b) -> tuple:
+    """End rows from rows or state indices (bvp/modal_ends.py)."""
+    return tuple(((int(r), 1.0),) if np.isscalar(r) else tuple(r) for r in b)
 
 
 def box_modes(pieces: list[Piece], fam: Family, ends: tuple, count: int,

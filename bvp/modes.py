@@ -102,6 +102,7 @@ from riser.result import SolveResult, Status
 from riser.scene import Scene
 
 from .mesh import clustered_mesh
+from .modal_ends import modal_ends
 from .modal_equations import (FAMILIES, Family, Piece, box_modes, build_pieces,
                               require_linearisable)
 
@@ -153,13 +154,13 @@ def solve_modes(scene: Scene, count: int = 10, *, static: SolveResult | None = N
                       f"{static.message}")
     pieces = build_pieces(scene, static.profile, dead_drag=True)
     info["pieces"] = [(round(p.s0, 6), round(p.s1, 6), bool(p.contact)) for p in pieces]
-    clamped = tuple(scene.vfife.clamped_ends)
+    top = pieces[-1].static(np.array([pieces[-1].s1]))
+    top_static = {k: float(top[k][0]) for k in ("theta", "T", "F")}
     modes, failures, checks = [], [], []
     done, total = 0, 2 * count
     for plane in PLANES:
         fam = FAMILIES[plane]
-        ends = (fam.clamped if "bottom" in clamped else fam.pinned,
-                fam.clamped if "top" in clamped else fam.pinned)
+        ends = modal_ends(scene, plane, top_static)
         lam, grid, states = box_modes(pieces, fam, ends, count, grid_intervals)
         if lam.size and lam[0] <= 0.0:
             return result(Status.NOT_CONVERGED, f"{plane}: the static state is not stable "
@@ -198,6 +199,10 @@ def solve_modes(scene: Scene, count: int = 10, *, static: SolveResult | None = N
 def _require_modal(scene: Scene) -> None:
     """Refuse what the linearisation does not represent (before solving)."""
     require_linearisable(scene, "bvp modes")
+    if scene.attachments:
+        raise UnsupportedSceneError(
+            f"{scene.source}: attachments: the bvp modes have no point masses (the VFIFE's "
+            "modes carry them: --method vfife)")
     if scene.internal_flow is not None and scene.internal_flow.speed != 0.0:
         raise UnsupportedSceneError(
             f"{scene.source}: internal_flow.speed: modes do not model flowing contents (the "
@@ -278,10 +283,14 @@ def _refine(pieces: list[Piece], fam: Family, ends: tuple, lam0: float, grid: np
         return J, Jp
 
     last = (npc - 1) * nz
-    b0, b1 = ends
+    # the end rows on the scaled states, each row normalised by its largest coefficient
+    b0, b1 = ([[(i, c * sc[i]) for i, c in row] for row in side] for side in ends)
+    b0, b1 = ([[(i, c / max(abs(c) for _, c in row)) for i, c in row] for row in side]
+              for side in (b0, b1))
 
     def bc(za, zb, p):
-        res = [za[i] for i in b0] + [zb[last + i] for i in b1]
+        res = ([sum(c * za[i] for i, c in row) for row in b0]
+               + [sum(c * zb[last + i] for i, c in row) for row in b1])
         res += [zb[k * nz + i] - za[(k + 1) * nz + i] for k in range(npc - 1)
                 for i in range(nz)]
         res += [za[n], zb[last + n] - 1.0]
@@ -360,6 +369,11 @@ def _scales(pieces: list[Piece], fam: Family, grid: np.ndarray, Y0: np.ndarray,
         big = np.max(terms, axis=1)
         sq += np.trapezoid(big ** 2, grid[sel], axis=1)
     sc = np.maximum(sc, TERM_FRACTION * ell * np.sqrt(sq / (grid[-1] - grid[0])))
+    # a state the mode does not move (the axial states of a vertical line's lateral mode,
+    # decoupled by symmetry: its guess is round-off) is scaled at 1e-6 of the largest:
+    # at 1e-9 its round-off stalled solve_bvp (a hanging chain's in-plane modes)
+    absent = np.max(np.abs(Y0), axis=1) < 1e-9 * np.max(np.abs(Y0))
+    sc = np.where(absent, np.maximum(sc, 1e-6 * np.max(sc)), sc)
     return np.maximum(sc, 1e-9 * np.max(sc))
 
 

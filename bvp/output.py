@@ -252,9 +252,9 @@ def equilibrium_residual(model: BeamModel, parts: list, grounded: float, c: dict
     """|P(top) - P(bottom) + integral of the external load| / max tension over the solved
     line (the rigid form's grounded part excluded), where the internal force is
     P = T t - F n, t = (cos, sin), n = (-sin, cos), and weight, drag and seabed reaction
-    are integrated over the unstretched arc length by the trapezoidal rule, piece by piece
-    (``parts``: bvp.output.pieces; an independent check of the collocation solution:
-    O(ds^2) quadrature error)."""
+    are integrated over the unstretched arc length by the trapezoidal rule, piece by piece,
+    plus the point attachments' forces (``parts``: bvp.output.pieces; an independent check
+    of the collocation solution: O(ds^2) quadrature error)."""
     def force(i):
         th = c["theta"][i]
         return c["T"][i] * np.array([np.cos(th), np.sin(th)]) - c["F"][i] * np.array(
@@ -275,6 +275,11 @@ def equilibrium_residual(model: BeamModel, parts: list, grounded: float, c: dict
             Vt = V * np.cos(th)
             load = load + model.c_n[k] * np.abs(Vn) * Vn * nrm + model.c_t[k] * np.abs(Vt) * Vt * t
         res += np.trapezoid(load, s, axis=1)
+        if model.point_w[k] != 0.0 or model.point_c[k] != 0.0:     # a point attachment
+            yp = float(np.interp(grounded + pc["s0"], c["s"], c["y"]))
+            V = (model.drag_factor * float(model.speed(np.array([yp]))[0])
+                 if model.speed is not None else 0.0)
+            res += np.array([model.point_c[k] * abs(V) * V, -model.point_w[k]])
     i0 = int(np.searchsorted(c["s"], grounded - 1e-6))
     res += force(-1) - force(i0)
     return float(np.hypot(*res) / max(np.max(np.abs(c["T"])), 1.0))

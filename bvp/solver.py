@@ -39,6 +39,7 @@ loads in the plane to the full ones (bvp/strategy.py).
 
 from __future__ import annotations
 
+import dataclasses
 import time
 
 import numpy as np
@@ -108,6 +109,17 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
         return SolveResult.refused("bvp", scene, (
             f"{scene.source}: {why_3d[0]}: {why_3d[1]}; solved in plane only "
             "(three_d=False)"))
+    validity.check_end_loads(scene)
+    if rod and ((isinstance(scene.ends, FixedEnds) and not scene.ends.plain)
+                or scene.attachments):
+        return SolveResult.refused("bvp", scene, (
+            f"{scene.source}: ends: the 3D rod holds its ends pinned in place and carries "
+            "no point loads (a joint, a tensioner, a free end or an attachment is solved "
+            "in plane only)"))
+    if scene.attachments and scene.seabed_model == "rigid":
+        return SolveResult.refused("bvp", scene, (
+            f"{scene.source}: attachments: on a rigid seabed the grounded line's form has "
+            "no point loads; give the seabed a stiffness ([seabed], the elastic model)"))
     if rod:
         refusal = rigid_grounded_across(scene)
         if refusal:
@@ -218,7 +230,8 @@ def xy_ends(scene: Scene) -> Scene:
     z = const lose their z (the planar problem's; the profile gets it back)."""
     e = scene.ends
     if isinstance(e, FixedEnds) and (len(e.anchor) > 2 or len(e.hang_off) > 2):
-        return scene.replace(ends=FixedEnds(anchor=e.anchor[:2], hang_off=e.hang_off[:2]))
+        return scene.replace(ends=dataclasses.replace(e, anchor=e.anchor[:2],
+                                                      hang_off=e.hang_off[:2]))
     return scene
 
 

@@ -192,6 +192,10 @@ def summarize(profile: Profile) -> dict:
         "hang_off_x": float(profile.x[-1]),
         "hang_off_height": float(profile.y[-1]),
         "hang_off_z": float(profile.z[-1]),
+        "hang_off_moment": float(_signed_end_moment(profile, -1)),
+        "anchor_moment": float(_signed_end_moment(profile, 0)),
+        "anchor_x": float(profile.x[0]),
+        "anchor_height": float(profile.y[0]),
         "bottom_tension": float(profile.tension[0]),
         "tdp_s": None if profile.tdp_s is None else float(profile.tdp_s),
         "tdp_x": tdp_x,
@@ -219,6 +223,17 @@ def summarize(profile: Profile) -> dict:
                     "max_von_mises_s": float(s[iv]),
                     "design_passes": bool(profile.utilisation[iu] <= 1.0)})
     return out
+
+
+def _signed_end_moment(profile: Profile, i: int) -> float:
+    """The in-plane bending moment M = EI dtheta/ds [N m] at the end ``i`` (0 or -1),
+    signed (a 3D profile's in-plane component)."""
+    if profile.moment_in_plane is not None:
+        return profile.moment_in_plane[i]
+    if len(profile.s) < 3:
+        return profile.moment[i]
+    kappa = np.gradient(np.unwrap(profile.theta), profile.s)[i]
+    return profile.moment[i] * (-1.0 if kappa < 0.0 else 1.0)
 
 
 def lateral_summary(profile: Profile) -> dict:

@@ -21,8 +21,10 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
+from .attachments import Attachment, check_attachments
 from .design.part import Design, check_design
 from .dynamics import Dynamics, TopMotion
+from .end_checks import check_end_conditions
 from .ends import (
     END_FORMS,
     Ends,
@@ -115,6 +117,7 @@ class Scene:
     dynamics: Dynamics | None = spec(None, "part", part=Dynamics)
     internal_flow: InternalFlow | None = spec(None, "part", part=InternalFlow)
     design: Design | None = spec(None, "part", part=Design)
+    attachments: tuple[Attachment, ...] = ()
     bvp: BVPSettings = spec(kind="part", part=BVPSettings, default_factory=BVPSettings)
     analytic: AnalyticSettings = spec(kind="part", part=AnalyticSettings,
                                       default_factory=AnalyticSettings)
@@ -141,6 +144,8 @@ class Scene:
         self._check_model()
         self._snap_anchor()
         self._check_geometry()
+        check_end_conditions(self)
+        check_attachments(self)
         self._check_current()
         self._check_top_motion()
         check_sea_state(self)
@@ -197,8 +202,8 @@ class Scene:
                 and 0.0 < e.anchor[1] <= self.anchor_snap_tolerance):
             return
         object.__setattr__(self, "_anchor_given", float(e.anchor[1]))
-        object.__setattr__(self, "ends", FixedEnds(anchor=(e.anchor[0], 0.0, *e.anchor[2:]),
-                                                   hang_off=e.hang_off))
+        object.__setattr__(self, "ends", dataclasses.replace(
+            e, anchor=(e.anchor[0], 0.0, *e.anchor[2:])))
 
     @property
     def anchor_snapped_from(self) -> float | None:
@@ -286,7 +291,8 @@ class Scene:
             chord = math.dist(e.anchor_point, e.hang_off_point)
             # an extensible line no longer than the chord is taut (it stretches); only the
             # inextensible model cannot reach
-            if self.axial_model == "inextensible" and length <= chord:
+            if (self.axial_model == "inextensible" and length <= chord
+                    and e.tensioner is None and not e.free_anchor):
                 raise self.error("segments", f"line length {length:g} m is not longer than "
                                  f"the distance {chord:g} m between anchor and hang_off: too "
                                  "short for an inextensible line ([model] axial = "

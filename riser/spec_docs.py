@@ -17,10 +17,18 @@ import dataclasses
 import sys
 from pathlib import Path
 
+from .attachments import Attachment
 from .design.part import Design, Fatigue, SeaState
 from .dynamics import Dynamics, TopMotion
 from .ends import FILE_KEYS as ENDS_FILE_KEYS
-from .ends import FixedEnds, HangOffAngleEnds, TdpTensionEnds, TopTensionEnds
+from .ends import (
+    EndJoint,
+    FixedEnds,
+    HangOffAngleEnds,
+    TdpTensionEnds,
+    Tensioner,
+    TopTensionEnds,
+)
 from .environment import Current, Seabed
 from .internal_flow import SLUG, InternalFlow
 from .line import FILE_KEYS as LINE_TYPE_FILE_KEYS
@@ -68,10 +76,13 @@ def _tables() -> list[tuple[str, list]]:
         ("[seabed]", _rows(Seabed)),
         ("[line_types.NAME]", _rows(LineType, extra=LINE_TYPE_FILE_KEYS)),
         ("[[segments]]", _rows(Segment)),
+        ("[[attachments]]", _rows(Attachment)),
         ("[ends]: touchdown tension", _rows(TdpTensionEnds)),
         ("[ends]: hang-off height and angle", _rows(HangOffAngleEnds, extra=ENDS_FILE_KEYS)),
         ("[ends]: J-lay, hang-off height and top tension", _rows(TopTensionEnds)),
         ("[ends]: fixed ends", _rows(FixedEnds)),
+        ("[ends.anchor_joint], [ends.hang_off_joint]", _rows(EndJoint)),
+        ("[ends.tensioner]", _rows(Tensioner)),
         ("[model]", [(key, sp, None) for key, sp in MODEL_KEYS.items()]),
         ("[dynamics]", _rows(Dynamics)),
         ("[dynamics.top_motion]", _rows(TopMotion)),

@@ -36,6 +36,7 @@ import numpy as np
 from .errors import SceneError
 from .profile import Profile
 from .scene import Scene, TopTensionEnds
+from .sections import segment_properties
 
 #: the fewest elements a VFIFE line and each of its segments may have: fewer cannot carry
 #: the catenary shape (a 2,800 m SCR in 900 m elements put its touchdown at x = 0) nor a
@@ -89,6 +90,45 @@ def check_resolution(scene: Scene, element_length: float, *, source: str | None 
                          f"(at least {MIN_ELEMENTS_SLUG} elements per slug, "
                          f"internal_flow.slug.slug_length = {flow.slug_length:g} m), got "
                          f"{element_length:g}")
+
+
+def check_end_loads(scene: Scene) -> None:
+    """Before solving (raises SceneError): a tensioner pulls harder than the line and its
+    attachments weigh (submerged; otherwise the bottom is in compression and a slender
+    riser buckles), and no buoy lifts a hanging line with a free end (the line and the
+    attachments below every point weigh more than zero there, or it floats up)."""
+    e = scene.ends
+    t = getattr(e, "tensioner", None)
+    free = getattr(e, "free_anchor", False)
+    if t is None and not free:
+        return
+    props = segment_properties(scene)
+    g, rho = scene.gravity, scene.water_density
+    points = sorted(((a.s, a.net_weight(g, rho), i) for i, a in enumerate(scene.attachments)))
+    weight = sum(p.weight * p.length for p in props) + sum(w for _, w, _ in points)
+    if t is not None and t.top_tension <= weight:
+        raise SceneError(scene.source, "ends.tensioner.top_tension", f"must exceed the "
+                         f"submerged weight of the line and its attachments {weight:.6g} N "
+                         f"(the bottom would be in compression), got {t.top_tension:g}")
+    if free:
+        starts = np.array([p.s_start for p in props])
+        w = np.array([p.weight for p in props])
+
+        def line_below(s):           # the line's submerged weight from the free end to s
+            return float(sum(wk * min(max(s - s0, 0.0), p.length)
+                             for wk, s0, p in zip(w, starts, props)))
+        hung = 0.0
+        for s, wp, i in points:
+            hung += wp
+            if line_below(s) + hung <= 0.0:
+                raise SceneError(scene.source, f"attachments[{i}].volume", "lifts the "
+                                 "hanging line: the line and the attachments below it weigh "
+                                 f"{line_below(s) + hung:.6g} N in water (a free end would "
+                                 "float up: no equilibrium)")
+        if weight <= 0.0:
+            raise SceneError(scene.source, "ends.anchor_joint.kind", f"'free': the line "
+                             f"and its attachments weigh {weight:.6g} N in water (it would "
+                             "float up: no equilibrium)")
 
 
 def nonfinite(profile: Profile) -> str | None:

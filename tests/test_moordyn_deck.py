@@ -186,10 +186,9 @@ BAD = {
                                              "---------------------- LINES"), r"^2  Free", "joins 3"),
     "coupled without position": (lambda t: t.replace("2  Fixed  1500  0  0", "2  Coupled  -  -  -"),
                                  r"^2  Coupled", "no position"),
-    "clump weight": (lambda t: t.replace("2  Fixed  1500", "2  Free  1500").replace(
-        "1  steel  1  2  2000  20  -", "1  steel  1  2  1000  10  -\n2  steel  2  3  1000  10  -").replace(
-        "---------------------- LINES", "3  Fixed  1500  0  0  0  0  0  0\n---------------------- LINES").replace(
-        "2  Free  1500  0  0  0  0", "2  Free  700  0  -500  500  0"), r"^2  Free", "clump weight"),
+    "mass on a fixed end": (lambda t: t.replace("2  Fixed  1500  0  0  0  0",
+                                                "2  Fixed  1500  0  0  500  0"),
+                            r"^2  Fixed", "on a fixed or coupled end"),
     "rod end attachment": (lambda t: t.replace("1  steel  1  2  2000", "1  steel  1  R1A  2000"),
                            r"^1  steel", "rod end"),
     "waves": (lambda t: t.replace("0                        writeLog", "0 writeLog\n2 WaveKin"),

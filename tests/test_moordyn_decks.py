@@ -702,22 +702,22 @@ REFUSED = {
         BEAM_CANTILEVERED, r"^1  cantilever", "RODS: a rod"),
     "MoorDyn polyester/visco.txt (viscoelastic EA)": (
         VISCO, r"^Polyester_290mm", "viscoelastic (static|dynamic) stiffness"),
-    "MoorDyn pendulum.txt (a clump weight)": (
-        PENDULUM, r"^2  Free", "clump weight"),
+    "MoorDyn pendulum.txt (a clump weight on a cable)": (
+        PENDULUM, r"^main ", "EI: must be > 0"),
     "MoorDyn seafloor.txt (a seafloor file)": (
         SEAFLOOR, r"SeafloorFile", "seafloor file (bathymetry)"),
     "MoorDyn fpe/span.txt (a cable)": (
         SPAN, r"^cable ", "EI: must be > 0"),
-    "MoorDyn stability/spring.txt (a hanging mass)": (
-        SPRING, r"^2  Free", "clump weight"),
+    "MoorDyn stability/spring.txt (a hanging mass on a cable)": (
+        SPRING, r"^main ", "EI: must be > 0"),
     "MoorDyn wavekin_current_1.txt (waves through the API)": (
         WAVEKIN_CURRENT_1, r"WaveKin", "option WaveKin = 1: waves"),
     "MoorPy examples/sample.txt (a body)": (
         MOORPY_SAMPLE, r"^1  coupled", "BODIES: a body"),
     "MoorPy tests/case1.dat (a chain)": (
         MOORPY_CASE1, r"^main ", "EI: must be > 0"),
-    "MoorPy tests/case3.dat (a float)": (
-        MOORPY_CASE3, r"^2  Free", "clump weight or a float"),
+    "MoorPy tests/case3.dat (a float on a cable)": (
+        MOORPY_CASE3, r"^main ", "EI: must be > 0"),
     "MoorPy tests/case7a.dat (a body)": (
         MOORPY_CASE7A, r"^1  coupled", "BODIES: a body"),
     "MoorPy examples/volturn_chain.dat (a chain)": (

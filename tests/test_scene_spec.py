@@ -100,7 +100,7 @@ PIPE = dict(name="p", outer_diameter=0.3, inner_diameter=0.25, mass_per_length=1
     (lambda: TopTensionEnds(hang_off_height=-1.0, top_tension=1e6), "<TopTensionEnds>",
      "hang_off_height", "must be > 0 m, got -1"),
     (lambda: FixedEnds(anchor=(0.0, 0.0), hang_off=(-600.0, 500.0)), "<FixedEnds>",
-     "hang_off[0]", "must be > anchor[0] = 0 (x points from the anchor towards the hang-off)"),
+     "hang_off[0]", "must be >= anchor[0] = 0 (x points from the anchor towards the hang-off"),
     (lambda: FixedEnds(anchor=(0.0,), hang_off=(600.0, 500.0)), "<FixedEnds>", "anchor",
      "must have 2 or 3 entries, got 1"),
     (lambda: TopMotion(axis="w", amplitude=1.0, period=10.0), "<TopMotion>", "axis",
@@ -188,6 +188,15 @@ def expected_scene(data: dict) -> dict:
     if "hang_off_angle_from_horizontal_deg" in e:
         e["hang_off_angle_deg"] = e.pop("hang_off_angle_from_horizontal_deg")
     out["ends"] = {k: tuple(v) if isinstance(v, list) else v for k, v in e.items()}
+    if "anchor" in e:                    # fixed ends: the end conditions' sub-tables
+        for key in ("anchor_joint", "hang_off_joint"):
+            j = e.get(key)
+            out["ends"][key] = None if j is None else {
+                "kind": j.get("kind", "pinned"), "direction_deg": j.get("direction_deg"),
+                "rotational_stiffness": j.get("rotational_stiffness")}
+        t = e.get("tensioner")
+        out["ends"]["tensioner"] = None if t is None else {
+            "top_tension": t["top_tension"], "stiffness": t.get("stiffness", 0.0)}
     dyn = data.get("dynamics")
     out["dynamics"] = None if dyn is None else expected_dynamics(dyn)
     out["waves"] = expected_waves(env.get("waves"))
@@ -199,6 +208,12 @@ def expected_scene(data: dict) -> dict:
         "slug_length": flow.get("slug", {}).get("slug_length"),
         "phase_deg": flow.get("slug", {}).get("phase_deg", 0.0)}
     out["design"] = expected_design(data.get("design"))
+    out["attachments"] = tuple({"s": a["s"], "mass": a.get("mass", 0.0),
+                                "volume": a.get("volume", 0.0),
+                                "drag_area": a.get("drag_area", 0.0),
+                                "added_mass_coefficient": a.get("added_mass_coefficient", 0.0),
+                                "label": a.get("label", "")}
+                               for a in data.get("attachments", []))
     return out
 
 

@@ -322,7 +322,7 @@ CASES = [
      "hang_off_height = 600.0\nhang_off_angle_from_horizontal_deg = 80.0", "ends.hang_off_height",
      ["must be <= water_depth 500 m"]),
     ("hang-off-behind-anchor", F, "hang_off = [600.0, 500.0]", "hang_off = [-600.0, 500.0]",
-     "ends.hang_off[0]", ["must be > anchor[0] = 0"]),
+     "ends.hang_off[0]", ["must be >= anchor[0] = 0"]),
     ("anchor-below-seabed", F, "anchor = [0.0, 0.0]", "anchor = [0.0, -1.0]",
      "ends.anchor[1]", ["must be >= 0", "seabed"]),
     # unit slips by ~1e3, caught by the plausible ranges
@@ -720,7 +720,7 @@ REPLACE_CASES = [
     ("hang-off-below-the-anchor-one-entry", F, "hang_off = [600.0, 500.0]",
      "hang_off = [600.0, -10.0]", {"ends.hang_off[1]": -10.0}, "ends.hang_off[1]: must be > 0"),
     ("hang-off-behind-the-anchor", F, "hang_off = [600.0, 500.0]", "hang_off = [-600.0, 500.0]",
-     {"ends.hang_off": (-600.0, 500.0)}, "ends.hang_off[0]: must be > anchor[0] = 0"),
+     {"ends.hang_off": (-600.0, 500.0)}, "ends.hang_off[0]: must be >= anchor[0] = 0"),
     ("anchor-below-the-seabed", F, "anchor = [0.0, 0.0]", "anchor = [0.0, -1.0]",
      {"ends.anchor": (0.0, -1.0)}, "ends.anchor[1]: must be >= 0 (the seabed is y = 0)"),
     ("hang-off-above-the-surface", F, "water_depth = 500.0", "water_depth = 400.0",
@@ -805,7 +805,8 @@ def test_replace_paths_change_one_value_and_keep_the_rest():
     assert scene.segments[0].length == 400.0                       # the original is unchanged
     for bad, says in (({"segments[5].length": 1.0}, "no such key in segments (it has 2"),
                       ({"ends.tdp_tension": 1.0}, "no such key in ends (known keys here: "
-                                                  "anchor, hang_off)"),
+                                                  "anchor, hang_off, anchor_joint, hang_off_joint, "
+                                                  "tensioner)"),
                       ({"dynamics.duration": 1.0}, "no such key in dynamics (not given"),
                       ({"colour": "red"}, "not a field or key path of the scene")):
         with pytest.raises(SceneError) as info:

@@ -560,19 +560,31 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
 def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, jinv, jrot,
                  kst, cseabed, mu, vfric, U, cdn, cdt, cdir, use_drag, qd0, qd1,
                  use_dashpot, wair, iair, madd, sband, dband, ysurf, use_surface, ql0, ql1,
-                 use_flow, pl0, pl1, use_dead, dt, c, stats, R, RM):
+                 use_flow, pl0, pl1, use_dead, dt, c, stats, R, RM, ends, cdp, use_points):
     """Planar version of :func:`node_pass` (w (n,) rotation rate about z, a0, b0 (ne,)
     moments about z, cdir (2,) in plane, qd0, qd1 (ne,) dashpot forces, ql0, ql1 (n,)
-    flow forces, pl0, pl1 (n,) dead load [N])."""
+    flow forces, pl0, pl1 (n,) dead load [N]). ``ends`` (:data:`END_SLOTS`,) the end
+    conditions: see :func:`_end_translation`; a rotational spring of stiffness
+    ends[2 j] [N m/rad] about the neutral direction ends[2 j + 1] [rad] at end j (0 the
+    anchor, 1 the hang-off) adds the moment -k (phi - phi_0) to the end node. cdp (n,):
+    the point attachments' drag 0.5 rho C_D A [kg/m], isotropic on the relative velocity
+    (f = cdp |u| u, MoorDyn's point), with the line's drag when use_drag and use_points
+    (a separate, loop-invariant branch: a line without attachments runs the same
+    arithmetic, bit for bit, as before they existed)."""
     n = x.shape[0]
     c1 = 1.0 - 0.5 * c * dt
     c2 = 1.0 / (1.0 + 0.5 * c * dt)
     rmax = 0.0
     mmax = 0.0
     ke = 0.0
-    for j in range(2):                      # end nodes: rotation only
+    for j in range(2):                      # end nodes: rotation (translation below)
         i = 0 if j == 0 else n - 1
         mi = a0[0] if j == 0 else b0[n - 2]
+        kj = ends[2 * j]
+        if kj > 0.0:                        # a flex joint: -k times the end's rotation
+            c0 = math.cos(ends[2 * j + 1])
+            s0 = math.sin(ends[2 * j + 1])
+            mi -= kj * math.atan2(c0 * dy[i] - s0 * dx[i], c0 * dx[i] + s0 * dy[i])
         q = (c1 * w[i] + dt * jinv[i] * mi) * c2
         w[i] = q
         ax = dx[i]
@@ -621,6 +633,10 @@ def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, 
             ft = wet * cdt[i] * abs(rt) * rt
             gx += cn * rnx + ft * ex
             gy += cn * rny + ft * ey
+            if use_points:
+                cq = wet * cdp[i] * math.sqrt(rx * rx + ry * ry)
+                gx += cq * rx
+                gy += cq * ry
         if use_flow:
             gx += ql0[i]
             gy += ql1[i]
@@ -649,11 +665,54 @@ def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, 
         dy[i] = ny * inv
         RM[i] = mi * mi
         ke += q * q * jrot[i]
+    if ends[4] > 0.0:                       # a free anchor end
+        ke += _end_translation(0, 1.0, f0[0], f1[0], x, y, vx, vy, wload, mass, im, pl0, pl1,
+                               use_dead, 0.0, dt, c1, c2, R)
+    if ends[5] > 0.0:                       # a tensioner: the top's height is free
+        pull = ends[6] - ends[7] * (y[n - 1] - ends[9])
+        ke += _end_translation(n - 1, 0.0, -f0[n - 2], -f1[n - 2], x, y, vx, vy, wload, mass,
+                               im, pl0, pl1, use_dead, pull, dt, c1, c2, R)
     if stats:
         rmax = _max_reduce(R, 1, n - 1)
+        if ends[4] > 0.0:
+            rmax = R[0] if not R[0] <= rmax else rmax
+        if ends[5] > 0.0:
+            rmax = R[n - 1] if not R[n - 1] <= rmax else rmax
         mm = _max_reduce(RM, 1, n - 1)
         mmax = mm if not mm <= mmax else mmax      # keeps a NaN
     return rmax, mmax, ke
+
+
+#: the slots of the planar kernels' ``ends`` array: the anchor's and the hang-off's
+#: rotational spring (k [N m/rad], neutral direction [rad]), a free anchor (1/0), a
+#: tensioner (1/0, top_tension [N], stiffness [N/m], the hang-off height [m], and the
+#: reference height [m] that :func:`run` sets every step: the hang-off height moved by the
+#: prescribed vertical displacement)
+END_SLOTS = 10
+
+
+@njit(inline="always", **_JIT)
+def _end_translation(i, fx_on, gx, gy, x, y, vx, vy, wload, mass, im, pl0, pl1, use_dead,
+                     pull, dt, c1, c2, R):
+    """Central-difference step of end node ``i``'s translation: its element's force (gx,
+    gy) [N], its weight, its dead load (point attachments) and ``pull`` [N] upwards (a
+    tensioner); x moves only where ``fx_on`` (a free end; a tensioned top keeps the x its
+    motion prescribes). The end node's half element carries no drag, seabed or flow load
+    (an O(h) defect of the free end, shrinking with the element length). Returns its
+    2 x kinetic energy; R[i] gets its squared out-of-balance force."""
+    gy += pull - wload[i]
+    if use_dead:
+        gx += pl0[i]
+        gy += pl1[i]
+    gx *= fx_on
+    R[i] = gx * gx + gy * gy
+    ux = (c1 * vx[i] + dt * gx * im[i]) * c2
+    uy = (c1 * vy[i] + dt * gy * im[i]) * c2
+    vx[i] = ux
+    vy[i] = uy
+    x[i] += dt * ux
+    y[i] += dt * uy
+    return mass[i] * (ux * ux + uy * uy)
 
 
 # ============================================================================ waves
@@ -799,9 +858,15 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
         jrot, wload, kst, cdn, cdt, heights, speeds, slopes, cdir, use_drag, Uz, speeds_z,
         slopes_z, turning, cseabed, mu, vfric, eta, Q, use_dashpot, wair, iair, madd,
         sband, dband, ysurf, use_surface, use_flow, t0, fpar, fnodes, FL, P, use_dead,
-        WT, WV, cin, PW, cdir3, use_waves, dt, c, top0, top_disp, tol_f, tol_m, vmax):
+        WT, WV, cin, PW, cdir3, use_waves, ends, cdp, use_points, dt, c, top0, top_disp,
+        tol_f, tol_m, vmax):
     """Advance up to ``nsteps`` explicit steps.
 
+    ends : (:data:`END_SLOTS`,) the end conditions of the planar kernels (flex joints, a
+        free anchor, a tensioner; see :func:`node_pass_2d`); a tensioned top follows the
+        hang-off's motion in x and z, its reference height (slot 9) in y.
+    cdp, use_points : (n,) the point attachments' isotropic drag [kg/m] (planar kernels),
+        read only when use_points.
     jinv, jrot : (n,) inverse rotational inertia [1/(kg m2)] (0 at a clamped end) and the
         inertia [kg m2].
     kst : (n,) seabed stiffness x tributary length [N/m] (zeros without a seabed).
@@ -883,6 +948,9 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
                 flow_pass(tk, fpar, fnodes, sband, madd, mass, im, imd, iair,
                           wair, wload, X[0], X[1], X[2], V[0], V[1], V[2], D[0], D[1],
                           D[2], FL[0], FL[1], FL[2], FL[3], FL[4], FL[5])
+        tensioned = ends[5] > 0.0
+        if tensioned:
+            ends[9] = ends[8] + top_disp[1, k]
         if planar:
             element_pass_2d(X[0], X[1], D[0], D[1], l0, kax, kb, F[0], F[1], MA[0], MB[0])
             if use_dashpot:
@@ -892,7 +960,8 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
                                       cseabed, mu, vfric, U, cdn, cdt, cdir, node_drag,
                                       Q[0], Q[1], use_dashpot, wair, iair, madd, sband,
                                       dband, ys, use_surface, FL[0], FL[1], use_flow,
-                                      load[0], load[1], use_load, dt, c, stats, R[0], R[1])
+                                      load[0], load[1], use_load, dt, c, stats, R[0], R[1],
+                                      ends, cdp, use_points)
         else:
             element_pass(X[0], X[1], X[2], D[0], D[1], D[2], l0, kax, kb, F[0], F[1], F[2],
                          MA[0], MA[1], MA[2], MB[0], MB[1], MB[2])
@@ -908,6 +977,8 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
                                    c, stats, R[0], R[1])
         ke = 0.5 * k1
         for j in range(3):
+            if j == 1 and tensioned:
+                continue
             d1 = top_disp[j, k + 1]
             X[j, n - 1] = top0[j] + d1
             V[j, n - 1] = (d1 - top_disp[j, k]) / dt

@@ -32,6 +32,12 @@ class Mesh:
         pi D^2 / 4 [kg/m], riser.sections).
     trib : (n,) tributary length of the nodes [m]; :meth:`lump` gives the other nodal
         values.
+    end_springs : the rotational stiffness [N m/rad] of the flex joints at the anchor
+        (node 0) and the hang-off (node n - 1), 0 without one (their nodes' stable step).
+    point_weight, point_mass, point_added, point_drag : (n,) the point attachments on the
+        nodes (riser/attachments.py; a node at each): net weight [N, + down], mass [kg],
+        added mass C_a rho V [kg], drag 0.5 rho C_D A [kg/m]; zeros without (None is
+        read as zeros).
     """
 
     s: np.ndarray
@@ -45,6 +51,22 @@ class Mesh:
     cdn_pl: np.ndarray
     cdt_pl: np.ndarray
     fluid_pl: np.ndarray
+    end_springs: tuple = (0.0, 0.0)
+    point_weight: np.ndarray | None = None
+    point_mass: np.ndarray | None = None
+    point_added: np.ndarray | None = None
+    point_drag: np.ndarray | None = None
+
+    def __post_init__(self) -> None:
+        for name in ("point_weight", "point_mass", "point_added", "point_drag"):
+            if getattr(self, name) is None:
+                setattr(self, name, np.zeros(len(self.s)))
+
+    @property
+    def point_nodes(self) -> np.ndarray:
+        """(n,) bool: the nodes that carry a point attachment."""
+        return ((self.point_weight != 0.0) | (self.point_mass != 0.0)
+                | (self.point_added != 0.0) | (self.point_drag != 0.0))
 
     @property
     def n(self) -> int:
@@ -73,12 +95,19 @@ def build_mesh(scene: Scene, element_length: float) -> Mesh:
     cols: dict[str, list] = {k: [] for k in ("l0", "EA", "EI", "mass_pl", "weight_pl", "rot_pl",
                                              "added_pl", "cdn_pl", "cdt_pl", "fluid_pl")}
     s = [0.0]
+    cuts = sorted(a.s for a in scene.attachments)
     for p in props:
-        ne = max(1, int(math.ceil(p.length / element_length - 1e-9)))
-        le = p.length / ne
-        for _ in range(ne):
+        # a node at every attachment inside the segment: the spans between them meshed
+        # alike
+        edges = [p.s_start, *(c for c in cuts if p.s_start < c < p.s_end), p.s_end]
+        les = []
+        for a, b in zip(edges[:-1], edges[1:]):
+            k = max(1, int(math.ceil((b - a) / element_length - 1e-9)))
+            les += [(b - a) / k] * k
+        ne = len(les)
+        for le in les:
             s.append(s[-1] + le)
-        cols["l0"] += [le] * ne
+        cols["l0"] += les
         cols["EA"] += [p.EA] * ne
         cols["EI"] += [p.EI] * ne
         cols["mass_pl"] += [p.mass] * ne
@@ -91,7 +120,25 @@ def build_mesh(scene: Scene, element_length: float) -> Mesh:
     arrays = {k: np.asarray(v, dtype=float) for k, v in cols.items()}
     s_arr = np.asarray(s)
     s_arr[-1] = props[-1].s_end
-    return Mesh(s=s_arr, **arrays)
+    e = scene.ends
+    springs = tuple(j.rotational_stiffness if j is not None and j.kind == "spring" else 0.0
+                    for j in (e.joint("anchor"), e.joint("hang_off"))) if hasattr(
+        e, "joint") else (0.0, 0.0)
+    return Mesh(s=s_arr, **arrays, end_springs=springs, **_points(scene, s_arr))
+
+
+def _points(scene: Scene, s: np.ndarray) -> dict:
+    """The point attachments' nodal arrays (see :class:`Mesh`) on the nodes ``s`` [m]."""
+    out = {k: np.zeros(len(s)) for k in ("point_weight", "point_mass", "point_added",
+                                         "point_drag")}
+    g, rho = scene.gravity, scene.water_density
+    for a in scene.attachments:
+        i = int(np.argmin(np.abs(s - a.s)))
+        out["point_weight"][i] += a.net_weight(g, rho)
+        out["point_mass"][i] += a.mass
+        out["point_added"][i] += a.added_mass(rho)
+        out["point_drag"][i] += a.drag_coefficient(rho)
+    return out
 
 
 # ----------------------------------------------------------------- starting shape

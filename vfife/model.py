@@ -18,6 +18,7 @@ from riser.internal_flow import contents_mass_per_length
 from riser.scene import Scene
 
 from . import kernels
+from .end_conditions import clamped_ends, end_array
 from .flow import flow_arrays
 from .mesh import Mesh
 from .recovery import Recovery
@@ -73,20 +74,27 @@ class Model:
         self.l0 = mesh.l0.copy()
         self.kax = mesh.EA / mesh.l0
         self.kb = mesh.EI / mesh.l0
-        self.mass = mesh.lump(mesh.mass_pl)
+        # the point attachments: their mass and (isotropic, dynamics) added mass on their
+        # nodes' inertia, their net weight on the nodes' weight
+        mass_air = mesh.lump(mesh.mass_pl) + mesh.point_mass
+        self.mass = mass_air + (mesh.point_added if added_mass else 0.0)
         self.madd = mesh.lump(mesh.added_pl) if added_mass else np.zeros(n)
         self.im = 1.0 / (self.mass + self.madd)
         self.imd = 1.0 / self.mass - self.im
-        self.clamped = tuple(scene.vfife.clamped_ends)
+        self.clamped = clamped_ends(scene)
+        self.ends = end_array(scene)
         self._set_rotational_inertia(rot_scale * mesh.lump(mesh.rot_pl))
-        self.wload = mesh.lump(mesh.weight_pl)
+        self.wload = mesh.lump(mesh.weight_pl) + mesh.point_weight
         self.trib = mesh.trib
         self.cdn = mesh.lump(mesh.cdn_pl)
         self.cdt = mesh.lump(mesh.cdt_pl)
+        self.cdp = mesh.point_drag.copy()
+        self.use_points = bool(np.any(self.cdp > 0.0))
         cur = scene.current
         self.has_current = bool(cur is not None and cur.max_abs_speed > 0.0)
         self.use_drag = self.has_current if drag is None else bool(
-            drag and (np.any(self.cdn > 0.0) or np.any(self.cdt > 0.0)))
+            drag and (np.any(self.cdn > 0.0) or np.any(self.cdt > 0.0)
+                      or np.any(self.cdp > 0.0)))
         # a current that turns with height: its x components along cdir = e_x (U) and its
         # z components (Uz), each interpolated in height (vfife.kernels.run); one heading:
         # the signed speed along it, Uz = 0
@@ -130,7 +138,7 @@ class Model:
         # the surface's height at each node [m] (the mean level; with waves the kernels
         # take the instantaneous one, vfife.waves)
         self.ysurf = np.full(n, float(scene.water_depth) if self.use_surface else math.inf)
-        self.wair = scene.gravity * self.mass       # weight in air [N] (pipe + contents)
+        self.wair = scene.gravity * mass_air   # weight in air [N] (pipe + contents, points)
         self.iair = 1.0 / self.mass
         self.dnode = _node_diameters(scene, mesh)
         k = 2 if planar else 3
@@ -273,7 +281,8 @@ class Model:
                           self.madd, self.trib, self.dnode, self.ysurf, self.use_surface,
                           self.use_flow, self.time, self.fpar, self.fnodes,
                           self.FL, self.P, self.use_dead, self.WT, self.WV, self.cin,
-                          self.PW, self.cdir, self.use_waves, dt, c, top0, top_disp,
+                          self.PW, self.cdir, self.use_waves, self.ends, self.cdp,
+                          self.use_points, dt, c, top0, top_disp,
                           tol_f, tol_m, vmax)
         self.steps += int(out[0])
         if self.use_flow:

@@ -226,6 +226,10 @@ def free_vibration(scene, plane: str = "in_plane", number: int = 1, *, static=No
         raise ValueError(f"{scene.name}: free vibration: the scene has a current, whose "
                          "static drag the released model (no drag) does not carry; the "
                          "check applies without current")
+    if plane == "out_of_plane" and not getattr(scene.ends, "plain", True):
+        raise ValueError(f"{scene.name}: free vibration out of plane: the 3D kernels hold "
+                         "their ends pinned (a joint, a tensioner or a free end is the "
+                         "planar kernels'); the check applies in plane")
     res, _ = static_state(scene, static)
     if not res.converged:
         raise ValueError(f"{scene.name}: no static state: {res.message}")

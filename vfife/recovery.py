@@ -36,8 +36,9 @@ curvature peak at a joint is not cut.
 Not covered: a load that changes inside an element (the sea surface of a dynamic run,
 smeared over the node's band by the wet fraction; the lift-off of a stiff seabed, where
 the shear has a kink between nodes): the mean is O(h) within one element of it. The
-tension is C1 at the lift-off (T' = w sin(theta) is continuous there) and there are no
-concentrated loads in the model.
+tension is C1 at the lift-off (T' = w sin(theta) is continuous there). A point attachment
+(a concentrated load) makes its node a joint: the tension and the shear jump there, and
+the node reports the mean of the two sides' estimates, the mean of the two limits.
 
 The recovery is a fixed sparse linear map from element values to nodes (:class:`Recovery`,
 built once per mesh); the equations of motion use the element forces and never this.
@@ -57,12 +58,14 @@ JOINT_PROPERTIES = ("weight_pl", "EA", "EI", "mass_pl", "rot_pl", "added_pl", "c
 
 def joint_nodes(mesh: Mesh) -> np.ndarray:
     """(n,) bool: the interior nodes whose two elements differ in any property of
-    :data:`JOINT_PROPERTIES` (relative difference above 1e-12)."""
+    :data:`JOINT_PROPERTIES` (relative difference above 1e-12), and the nodes of point
+    attachments (the tension and shear jump there: each side's estimate, their mean)."""
     out = np.zeros(mesh.n, bool)
     for name in JOINT_PROPERTIES:
         v = np.asarray(getattr(mesh, name), float)
         scale = np.maximum(np.maximum(np.abs(v[1:]), np.abs(v[:-1])), 1e-300)
         out[1:-1] |= np.abs(v[1:] - v[:-1]) > 1e-12 * scale
+    out[1:-1] |= mesh.point_nodes[1:-1]
     return out
 
 

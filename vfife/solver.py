@@ -192,9 +192,15 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
                 f"{scene.name}: vfife.clamped_ends: clamped ends are supported for planar "
                 f"scenes only (the VFIFE elements carry no twist), and {key}: {why}; "
                 "remove that or the clamp")
+        if scene.attachments and scene.waves is not None and scene.waves.line_loads:
+            raise UnsupportedSceneError(
+                f"{scene.name}: attachments: the wave loads on a point attachment are not "
+                "modelled (the wave pass loads the line only); remove the waves or the "
+                "attachments")
     except UnsupportedSceneError as exc:
         return SolveResult.refused("vfife", scene, exc)
     validity.check_resolution(scene, h)
+    validity.check_end_loads(scene)
     if progress is not None:
         progress("vfife: loading the kernels (compiled on the first run)")
     compile_s = warm_up()

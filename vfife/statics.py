@@ -86,6 +86,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .end_conditions import joint_directions, needs_straight_start, straight_start
 from .mesh import Mesh, build_mesh, catenary_shape, interpolate_state, length_consistent
 from .model import Model
 from .relaxation import RelaxOutcome, Tolerances, divergence_message, relax, static_inertia
@@ -205,7 +206,13 @@ def catenary_start(scene, mesh: Mesh, h: float, knobs: RelaxationKnobs, info: di
     not the equilibrium). ``h`` [m]: the mesh's element length. Returns (X, D, element
     tensions [N], the catenary's H [N], the ramp (uniform weight [N/m], steps) or ()); the
     catenary's figures go into ``info``."""
+    if needs_straight_start(scene):
+        # a vertical, tensioned or free-hanging line: the straight stretched line
+        X, D, tensions, H = straight_start(scene, mesh.s)
+        info["start"] = "straight"
+        return X, joint_directions(scene, D), tensions, H, ()
     X, D, cinfo = catenary_shape(scene, mesh.s)
+    D = joint_directions(scene, D)
     span = math.dist(scene.ends.anchor_point, scene.ends.hang_off_point)
     height = max(abs(float(scene.ends.hang_off[1])), 1.0)
     ramp = ()
@@ -220,6 +227,7 @@ def catenary_start(scene, mesh: Mesh, h: float, knobs: RelaxationKnobs, info: di
             f"from a uniform line of {wu:.4g} N/m and ramped the weight to the "
             f"scene's in {knobs.continuation_steps} steps on the {h:g} m mesh")
         X, D, cinfo = catenary_shape(scene, mesh.s, uniform_weight=wu)
+        D = joint_directions(scene, D)
         ramp = (wu, knobs.continuation_steps)
     tensions = cinfo.pop("element_tension")
     info.update(cinfo)

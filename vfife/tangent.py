@@ -207,7 +207,23 @@ def linearise(model: Model, basis: np.ndarray | None = None) -> Tangent:
                          - model.madd[:, None, None] * np.einsum("ni,nj->nij", d, d))
     blocks[:, 3, 3] = blocks[:, 4, 4] = model.jrot
     M = sp.bsr_matrix((blocks, np.arange(n), np.arange(n + 1)), shape=(N, N)).tocsr()
-    fixed = [0, 1, 2, NDOF * (n - 1), NDOF * (n - 1) + 1, NDOF * (n - 1) + 2]
+    # the end conditions (vfife.end_conditions): a free anchor's translations and a
+    # tensioned top's height are free, the tensioner a vertical spring; a flex joint a
+    # rotational spring about both axes normal to the end's director (isotropic); the
+    # dead loads (weight, the tensioner's top_tension) add no stiffness
+    ends = model.ends
+    top = NDOF * (n - 1)
+    fixed = ([] if ends[4] > 0.0 else [0, 1, 2]) + [top, top + 2]
+    springs = np.zeros(N)
+    if ends[5] > 0.0:
+        springs[top + 1] = ends[7]
+    else:
+        fixed.append(top + 1)
+    for i, k in ((0, ends[0]), (n - 1, ends[2])):
+        springs[NDOF * i + 3] += k
+        springs[NDOF * i + 4] += k
+    if np.any(springs != 0.0):
+        K = (K + sp.diags(springs)).tocsr()
     for end in model.clamped:
         i = 0 if end == "bottom" else n - 1
         fixed += [NDOF * i + 3, NDOF * i + 4]

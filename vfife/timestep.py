@@ -43,11 +43,14 @@ def node_sum(per_element) -> np.ndarray:
 
 def nodal_stiffness(mesh: Mesh, tension=0.0) -> dict:
     """Gershgorin row sums per node: 'axial' (EA/l from each adjacent element) [N/m],
-    'rotation' (6 EI/l) [N m/rad] and 'transverse' (bending zig-zag 24 EI/l^3 plus string
+    'rotation' (6 EI/l, plus a flex joint's stiffness at an end) [N m/rad] and 'transverse' (bending zig-zag 24 EI/l^3 plus string
     2 |T|/l) [N/m]; ``tension`` [N] scalar or (ne,)."""
     T = np.broadcast_to(np.abs(np.asarray(tension, float)), mesh.l0.shape)
+    rotation = node_sum(6.0 * mesh.EI / mesh.l0)
+    rotation[0] += mesh.end_springs[0]             # flex joints at the ends
+    rotation[-1] += mesh.end_springs[1]
     return {"axial": node_sum(mesh.EA / mesh.l0),
-            "rotation": node_sum(6.0 * mesh.EI / mesh.l0),
+            "rotation": rotation,
             "transverse": node_sum(24.0 * mesh.EI / mesh.l0 ** 3 + 2.0 * T / mesh.l0)}
 
 

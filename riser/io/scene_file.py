@@ -22,7 +22,15 @@ from pathlib import Path
 
 from ..design.part import Design, Fatigue, SeaState
 from ..ends import FILE_KEYS as ENDS_FILE_KEYS
-from ..ends import FixedEnds, HangOffAngleEnds, TdpTensionEnds, TopTensionEnds
+from ..attachments import Attachment
+from ..ends import (
+    EndJoint,
+    FixedEnds,
+    HangOffAngleEnds,
+    TdpTensionEnds,
+    Tensioner,
+    TopTensionEnds,
+)
 from ..errors import SceneError
 from ..line import BORE, FILE_KEYS, POISSON_RATIO, LineType, Segment, check_bore
 from ..scene import (
@@ -172,6 +180,8 @@ def scene_from_dict(data: dict, source: str = "<scene>") -> Scene:
                             for name in list(lt_root.data)}
     lt_root.finish()
     values["segments"] = tuple(_read_part(t, Segment) for t in root.array_of_tables("segments"))
+    values["attachments"] = tuple(_read_part(t, Attachment)
+                                  for t in root.array_of_tables("attachments", required=False))
     values["ends"] = _read_ends(root.table("ends", required=True))
 
     vessel_t = root.table("vessel")
@@ -327,6 +337,11 @@ def _read_ends(t: Table):
         values.update(t.fields(TopTensionEnds, names=("hang_off_height",)))
     else:
         values = t.fields(form)
+        for name, cls in (("anchor_joint", EndJoint), ("hang_off_joint", EndJoint),
+                          ("tensioner", Tensioner)):
+            sub = t.table(name)
+            if sub is not None:
+                values[name] = _read_part(sub, cls)
     t.finish()
     return t.build(form, **values)
 

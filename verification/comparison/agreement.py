@@ -57,7 +57,7 @@ MOMENT_ROWS = ("moment", "max_moment", "max_moment_s", "moment_out_of_plane",
 
 def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
               s_shift: float = 0.0, nodal: bool = False,
-              moment_reason: str | None = None) -> list[dict]:
+              moment_reason: str | None = None, ends=None, points=()) -> list[dict]:
     """The protocol's rows for two static profiles.
 
     Each row has the :data:`AGREEMENT_COLUMNS` (``abs_diff`` = |VFIFE - BVP|, ``rel_diff``
@@ -72,7 +72,14 @@ def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
     :func:`unresolved_bending`): the moment rows are then shown, not judged (``pass``
     None, the reason in ``note``). A crest's or sag's position row takes a tolerance
     conditioned on its curvature (the BVP's there; a flat feature's position is
-    ill-conditioned, :func:`~.tolerances.feature_position_tolerance`)."""
+    ill-conditioned, :func:`~.tolerances.feature_position_tolerance`). ``ends``: the
+    scene's fixed ends, whose joints, tensioner and free anchor add the rows of what they
+    make an output: the moment at a held end (``anchor_moment``, ``hang_off_moment``),
+    the tensioned top's height (``hang_off_height``), the free end's position
+    (``anchor_x``, ``anchor_height``). ``points``: the arc lengths [m] of point
+    attachments (BVP coordinate), where the tension jumps: the tension row leaves their
+    nodes out (the BVP's profile holds one side there, the VFIFE's node the mean of the
+    two), and compares it at every other node."""
     rows: list[dict] = []
     vf = shifted(vf_prof, s_shift)
     sb, sv = summarize(bvp_prof), summarize(vf)
@@ -109,6 +116,8 @@ def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
     ref = (nodal_average(vf.s, bvp_prof.s, bvp_prof.tension) if nodal
            else np.interp(vf.s, bvp_prof.s, bvp_prof.tension))
     dT = vf.tension[sel] - ref[sel]
+    for sp in points:                   # a jump: compared beside it, not on it
+        dT = np.where(np.abs(grid - sp) < 1e-6, 0.0, dT)
     three_d = bvp_prof.is_3d and vf.is_3d
     # the signed in-plane moment (a 3D profile's moment_in_plane)
     dM = signed_moment(vf)[sel] - np.interp(grid, bvp_prof.s, signed_moment(bvp_prof))
@@ -130,6 +139,8 @@ def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
     if "hang_off_wall_tension" in sb and "hang_off_wall_tension" in sv:
         add("hang_off_wall_tension", sb["hang_off_wall_tension"], sv["hang_off_wall_tension"])
     add("hang_off_angle_deg", sb["hang_off_angle_deg"], sv["hang_off_angle_deg"])
+    for name in end_rows(ends):
+        add(name, sb[name], sv[name])
     if "max_utilisation" in sb and "max_utilisation" in sv:       # a scene with [design]
         add("max_utilisation", sb["max_utilisation"], sv["max_utilisation"],
             note=f"{sb['design_code']} at s = {sb['max_utilisation_s']:.1f} m (BVP)")
@@ -170,6 +181,24 @@ def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
         note="between the nearest peaks within the max_moment tolerance of the maximum "
              "(a tie)" if tie else "")
     return rows
+
+
+def end_rows(ends) -> list[str]:
+    """The rows the end conditions of ``ends`` (a FixedEnds, or None) add (see
+    :func:`agreement`)."""
+    out = []
+    joint = getattr(ends, "joint", None)
+    if joint is None:
+        return out
+    if ends.free_anchor:
+        out += ["anchor_x", "anchor_height"]
+    elif joint("anchor") is not None:
+        out.append("anchor_moment")
+    if joint("hang_off") is not None:
+        out.append("hang_off_moment")
+    if ends.tensioner is not None:
+        out.append("hang_off_height")
+    return out
 
 
 def unresolved_bending(scene, bvp_prof: Profile, element_length: float,

@@ -66,6 +66,8 @@ DESIGN_UNITS = {
 DESIGN = tuple(dict.fromkeys(f for files in DESIGN_UNITS.values() for f in files))
 #: ``fatigue SCENE``: the fatigue unit's files
 FATIGUE = DESIGN_UNITS["fatigue"]
+#: ``reproduce ends``: the end conditions and attachments against their closed forms
+ENDS = ("closed_forms.csv", "report.md", "deflection.png", "chain_modes.png")
 #: ``stress`` and ``reproduce stress``
 STRESS = ("summary.csv", "report.md")
 #: ``bench``
@@ -90,6 +92,7 @@ STUDY_FILES = {
     "cross_current": CROSS_CURRENT,
     "sea_states": SEA_STATES,
     "design": DESIGN,
+    "ends": ENDS,
     # the static comparison of each scene (without the paper model) beside its cases
     "dynamics": ("cases.csv", "convergence.csv", "report.md") + tuple(
         f for f in COMPARE if not f.startswith("bvp_paper_model/")),

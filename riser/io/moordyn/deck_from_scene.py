@@ -3,7 +3,17 @@ MoorDyn peer runs).
 
 One MoorDyn line per run of segments with the same section (adjacent equal segments are
 merged: a joint between MoorDyn lines is a hinge, so none is added where the scene has
-none); free points join them, fixed points hold the anchor and the hang-off.
+none), split at each attachment; free points join them, fixed points hold the anchor and
+the hang-off (a free anchor end, ``[ends.anchor_joint] kind = "free"``, is a free point).
+
+Attachments (``[[attachments]]``): each is MoorDyn's free point at its arc length s, the
+lines ending and starting there, with M = mass, V = volume, CdA = drag_area, Ca =
+added_mass_coefficient (MoorDyn's point: weight (M - rho V) g, drag 1/2 rho CdA |u| u,
+added mass Ca rho V, the scene's; a hinge, as every joint). An attachment within
+:data:`SNAP` of a joint between sections sits on that joint; attachments at one point are
+merged (masses, volumes and drag areas added, Ca weighted by volume), with a note. Each
+line gets ceil(L / segment_length) segments, so no segment is longer than the segment
+length.
 
 Equivalent sections. MoorDyn ties weight, buoyancy, drag and added mass to one diameter d
 and the mass per length m: w = (m - rho pi d^2 / 4) g, normal drag on d l, tangential drag
@@ -46,6 +56,9 @@ from .waves import wave_file_text
 #: the time it may run [s], the residual acceleration it stops at [m/s2] and the interval
 #: of its checks [s]; see verification/peers/moordyn/run.py for what they mean
 IC_OPTIONS = {"TmaxIC": 2000.0, "threshIC": 1.0e-4, "dtIC": 1.0}
+#: an attachment this close [m] to a joint between sections is put on it (far below the
+#: 1e-9 m to which export then import gives back its s; no line of 1e-9 m)
+SNAP = 1.0e-10
 
 
 @dataclass
@@ -76,6 +89,14 @@ def _check(scene: Scene) -> None:
         why = "[model] seabed = 'rigid': MoorDyn's seabed is an elastic foundation (kBot)"
     elif scene.internal_flow is not None:
         why = "[internal_flow]: MoorDyn has no internal flow"
+    else:
+        e = scene.ends
+        held = [f"[ends.{k}_joint] kind = '{jt.kind}'" for k in ("anchor", "hang_off")
+                if (jt := e.joint(k)) is not None and jt.kind != "free"]
+        held += ["[ends.tensioner]"] if e.tensioner is not None else []
+        if held:
+            why = (f"{', '.join(held)}: MoorDyn's points are pinned in place (no end moment, "
+                   "no tensioner); written as pinned they would be another line")
     if why:
         raise UnsupportedSceneError(f"cannot export {scene.name} to MoorDyn: {why}")
 
@@ -155,33 +176,39 @@ def export_scene(scene: Scene, *, segment_length: float | None = None,
         d, m, EA, EI, Cd, Ca, CdAx = sec
         deck.line_types[name] = DeckLineType(name, d, m, EA, f"{-abs(damping):g}", EI, Cd,
                                              Ca, CdAx, 0.0)
+    # the lines: the runs of equal sections split at the attachments
+    pieces, loads = _pieces(scene, props, groups, notes)
+    edges = {props[idx[0]].s_start for _, idx in groups} | {props[-1].s_end}
     # points: anchor, joints, hang-off (scene -> MoorDyn coordinates)
     def md(x, y, z=0.0):
         return (x, -z, y - depth)
 
     a, b = scene.ends.anchor_point, scene.ends.hang_off_point
-    s_edges = [props[g[1][0]].s_start for g in groups] + [props[-1].s_end]
+    s_edges = [p[1] for p in pieces] + [pieces[-1][2]]
     total = s_edges[-1]
     pts = [md(*a)]
-    for k in range(1, len(groups)):
+    for k in range(1, len(pieces)):
         if joints is not None:
             pts.append(md(*joints[k - 1]))
         else:
             f = s_edges[k] / total
             pts.append(md(*(p + f * (q - p) for p, q in zip(a, b))))
     pts.append(md(*b))
-    kinds = ["Fixed"] + ["Free"] * (len(groups) - 1) + [hang_off]
-    deck.points = [DeckPoint(i + 1, kind, *p) for i, (kind, p) in enumerate(zip(kinds, pts))]
+    free = scene.ends.free_anchor
+    kinds = ["Free" if free else "Fixed"] + ["Free"] * (len(pieces) - 1) + [hang_off]
+    deck.points = [DeckPoint(i + 1, kind, *p, *loads.get(i, (0.0,) * 4))
+                   for i, (kind, p) in enumerate(zip(kinds, pts))]
     spans = []
-    for k, (sec, idx) in enumerate(groups):
-        length = sum(scene.segments[i].length for i in idx)
+    for k, (sec, s0, s1, idx) in enumerate(pieces):
+        whole = s0 in edges and s1 in edges          # a run of whole segments: their sum
+        length = sum(scene.segments[i].length for i in idx) if whole else s1 - s0
         n = max(1, math.ceil(length / h - 1e-9))
         deck.lines.append(DeckLine(k + 1, names[sec], str(k + 1), str(k + 2), length, n, "-"))
-        spans.append((s_edges[k], s_edges[k + 1]))
+        spans.append((s0, s1))
     opts = _options(scene, deck, groups[0][0], depth, notes, ic)
     sea = _sea(scene, waves, opts, notes)
     deck.options = {k: (v, 0) for k, v in opts.items()}
-    deck.outputs = ["AnchTen1", f"FairTen{len(groups)}"]
+    deck.outputs = ["AnchTen1", f"FairTen{len(pieces)}"]
     profile = _current_profile(scene, depth) if scene.current is not None else None
     if scene.dynamics is not None or scene.vessel is not None:
         notes.append("The scene's [dynamics] and [vessel] (top motion, RAOs, duration) are "
@@ -192,7 +219,53 @@ def export_scene(scene: Scene, *, segment_length: float | None = None,
                      "scene's pipe does: the two differ wherever the effective tension is "
                      "negative.")
     text = format_deck(deck, comments=notes, option_notes=_OPTION_NOTES)
-    return ExportedDeck(text, profile, notes, deck, [idx for _, idx in groups], spans, sea)
+    return ExportedDeck(text, profile, notes, deck, [p[3] for p in pieces], spans, sea)
+
+
+def _pieces(scene: Scene, props, groups, notes: list[str]) -> tuple[list, dict]:
+    """The MoorDyn lines, (section, s0, s1, the scene segments in it), from the runs of
+    equal sections split at the attachments, and the point loads: point index -> (M, V,
+    CdA, Ca) of the attachments there."""
+    edges = [props[idx[0]].s_start for _, idx in groups] + [props[-1].s_end]
+    cuts: list[float] = []          # one cut per point: those within SNAP are one point
+    for s in sorted(a.s for a in scene.attachments):
+        if min(abs(s - e) for e in edges + cuts[-1:]) > SNAP:
+            cuts.append(s)
+    pieces = []
+    for k, (sec, _) in enumerate(groups):
+        s = [edges[k], *(c for c in cuts if edges[k] < c < edges[k + 1]), edges[k + 1]]
+        pieces += [(sec, s0, s1, [i for i, p in enumerate(props)
+                                  if p.s_start < s1 and p.s_end > s0])
+                   for s0, s1 in zip(s, s[1:])]
+    ends = [p[1] for p in pieces] + [pieces[-1][2]]
+    at: dict[int, list] = {}
+    for a in scene.attachments:
+        at.setdefault(min(range(len(ends)), key=lambda i: abs(ends[i] - a.s)), []).append(a)
+    loads = {}
+    for i, atts in at.items():
+        if i == len(ends) - 1 or (i == 0 and not scene.ends.free_anchor):
+            raise UnsupportedSceneError(
+                f"cannot export {scene.name} to MoorDyn: attachment "
+                f"'{atts[0].label or atts[0].s}' at s = {atts[0].s:g} m is within {SNAP:g} m "
+                "of a fixed end, where MoorDyn's point holds no load")
+        vol = sum(a.volume for a in atts)
+        ca = atts[0].added_mass_coefficient if len(atts) == 1 else (sum(
+            a.added_mass_coefficient * a.volume for a in atts) / vol if vol else 0.0)
+        loads[i] = (sum(a.mass for a in atts), vol, sum(a.drag_area for a in atts), ca)
+        if len(atts) > 1:
+            notes.append(f"Attachments {', '.join(a.label or f's = {a.s:g} m' for a in atts)}"
+                         f" at one point (s = {ends[i]:g} m): merged into point {i + 1}, "
+                         "masses, volumes and drag areas added, Ca weighted by volume.")
+    if scene.attachments:
+        notes.append("Attachments are free points (MoorDyn's Mass, Volume, CdA, Ca = the "
+                     "scene's mass, volume, drag_area, added_mass_coefficient): " + ", ".join(
+                         f"point {i + 1} at s = {ends[i]:.12g} m" for i in sorted(loads))
+                     + "; lines end and start there.")
+    short = min(s1 - s0 for _, s0, s1, _ in pieces)
+    if scene.attachments and short < 1e-3 * ends[-1]:
+        notes.append(f"The shortest line is {short:g} m (an attachment near a joint): "
+                     "MoorDyn's time step follows its shortest segment.")
+    return pieces, loads
 
 
 def _sea(scene: Scene, waves: bool, opts: dict, notes: list[str]) -> str | None:

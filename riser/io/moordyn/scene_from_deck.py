@@ -1,12 +1,13 @@
 """A MoorDyn v2 deck -> a scene (``riser-verify import-moordyn``).
 
-What a scene holds: one line from a bottom end to a hang-off, both fixed, made of
-segments. So the deck must describe one chain of lines joined end to end by free points
-(MoorDyn's joints, which are hinges: see docs/moordyn.md), between two fixed or coupled points
-at their deck positions. Everything else is refused before anything is written, one line
-naming the deck line: bodies, rods, failures, external loads, waves other than summed
-components (WaveKin 7: :mod:`riser.io.moordyn.waves`), a seafloor file, a
-third fixed end, a point with a mass, a volume or drag (a clump weight or a float), a
+What a scene holds: one line from a bottom end to a hang-off, made of segments, with point
+attachments. So the deck must describe one chain of lines joined end to end by free points
+(MoorDyn's joints, hinges: see docs/moordyn.md) between two fixed or coupled points at
+their deck positions, or hanging from one of them with a free bottom end. Everything else
+is refused before anything is written, one line naming the deck line: bodies, rods,
+failures, external loads, waves other than summed components (WaveKin 7:
+:mod:`riser.io.moordyn.waves`), a seafloor file, a third fixed end, a steady force on a
+point, a mass, volume or drag on a fixed or coupled end, a free end above the fixed one, a
 coupled point with no position, a branch or a loop, a line type that a used line cannot
 have (no bending stiffness, a nonlinear EA), a number written with a comma.
 
@@ -19,21 +20,23 @@ the seabed, so y = Z + WtrDpth):
   mass_per_length = Mass/m, axial_stiffness = EA, bending_stiffness = EI, drag_normal =
   Cd (on d l), drag_tangential = CdAx (on pi d l, the scene's convention too), added_mass =
   Ca; CaAx and the VIV lift Cl have no scene key and are dropped with a note;
+- a free point with M, V, CdA or Ca (a clump weight, a buoy) -> an ``[[attachments]]``
+  entry at its arc length s (the unstretched lengths of the lines below it; 0 at a free
+  bottom end, which becomes ``[ends.anchor_joint] kind = "free"`` at its deck position,
+  the seabed dropped: a hanging line clears it): mass = M, volume = V, drag_area = CdA,
+  added_mass_coefficient = Ca (MoorDyn's point: weight (M - rho V) g, drag 1/2 rho CdA
+  |u| u, added mass Ca rho V, as the scene's);
 - the seabed: MoorDyn's contact force per metre is kBot d times the penetration, so the
   scene's stiffness [N/m2] is kBot x Diam of the bottom line; cBot becomes the damping as
   a fraction of critical, cBot d / (2 sqrt(k (m + m_a))) (the VFIFE definition); the
   friction is FrictionCoefficient;
-- a steady current (``Currents 1``) is read from current_profile.txt beside the deck
-  (MoorDyn's convention): rows ``z ux uy uz`` with uz = 0, the horizontal velocity
-  (ux, uy) turned into the scene's frame (x along the ends' horizontal direction, z =
-  x cross y): one direction at every depth gives ``heading_deg`` and speeds signed along
-  it; a profile that turns with depth gives ``headings_deg`` (one per row) and the
-  speeds (magnitudes). Points and current are turned alike, so a deck turned about Z
-  imports to the same scene;
-- the options as MoorDyn-C 2.7 reads them (:mod:`riser.io.moordyn.options`): its defaults
-  g = 9.80665 m/s2 and a density of 1025 kg/m3 when the deck gives none, the water depth
-  lowered to the deepest point as MoorDyn-C lowers it. Where each value came from is
-  written as a comment in the scene file.
+- a steady current (``Currents 1``) from current_profile.txt beside the deck: rows ``z ux
+  uy uz`` with uz = 0, (ux, uy) turned into the scene's frame: one direction at every
+  depth gives ``heading_deg`` and speeds signed along it; a profile that turns with depth
+  ``headings_deg`` (one per row) and the speeds. Points and current are turned alike;
+- the options as MoorDyn-C 2.7 reads them (:mod:`riser.io.moordyn.options`): g = 9.80665
+  m/s2 and 1025 kg/m3 when the deck gives none, the water depth lowered to the deepest
+  point as MoorDyn-C lowers it. Where each value came from is a comment in the scene file.
 """
 
 from __future__ import annotations
@@ -46,9 +49,10 @@ from ...errors import SceneError
 from ...scene import Scene
 from ..scene_file import scene_from_dict
 from ..toml_text import dumps
-from .deck import Deck, DeckPoint, read_deck, read_text
+from .current import read_current
+from .deck import Deck, DeckPoint, read_deck
 from .options import Options, read_options
-from .tokens import DeckError, comma_message, is_comma_number
+from .tokens import DeckError
 from .waves import WAVE_FILE, read_components, waves_table
 
 
@@ -60,13 +64,12 @@ def import_deck(path: str | Path, name: str | None = None) -> tuple[str, Scene, 
     path = Path(path)
     deck = read_deck(path)
     name = _scene_name(name or path.stem)
-    data, notes, where, env_comments = scene_dict(deck, name,
-                                                  path.parent / "current_profile.txt",
-                                                  path.parent / WAVE_FILE)
+    data, notes, where, comments = scene_dict(deck, name, path.parent / "current_profile.txt",
+                                              path.parent / WAVE_FILE)
     header = [f"Imported from the MoorDyn deck {path.name} by riser-verify import-moordyn.",
               *notes]
     text = dumps(data, header=[_printable(h) for h in header],
-                 comments={"environment": [_printable(c) for c in env_comments]})
+                 comments={k: [_printable(c) for c in v] for k, v in comments.items()})
     try:
         scene = scene_from_dict(data, f"{path.name} (imported)")
     except SceneError as exc:   # a value outside a scene's range: name the deck line (or
@@ -102,8 +105,15 @@ _POINT_REF = re.compile(r"(?i)(?:p|point|c|con)?(\d+)")
 _ROD_END = re.compile(r"(?i)r(?:od)?\d+[ab]")
 
 
-def _chain(deck: Deck) -> tuple[list[tuple[int, bool]], DeckPoint, DeckPoint]:
-    """The lines in order from the bottom end, each (index, reversed), and the two ends."""
+def _loads(p: DeckPoint) -> bool:
+    """The point carries a mass, a volume or drag (a clump weight, a buoy)."""
+    return bool(p.mass or p.volume or p.CdA or p.Ca)
+
+
+def _chain(deck: Deck) -> tuple[list[tuple[int, bool]], DeckPoint, DeckPoint, list[DeckPoint]]:
+    """The lines in order from the bottom end, each (index, reversed), the two ends (the
+    bottom one may be a free point: a hanging line) and the free points joining the lines
+    (the k-th between lines k and k + 1)."""
     src = deck.source
     if not deck.lines:
         raise DeckError(src, 0, "has no lines (the LINES table is empty)")
@@ -124,7 +134,7 @@ def _chain(deck: Deck) -> tuple[list[tuple[int, bool]], DeckPoint, DeckPoint]:
                 raise DeckError(src, ln.line, f"line {ln.id}: Attach{end} = {pid}: no such "
                                 f"point (IDs 1..{npt})")
             ends.setdefault(pid, []).append((i, end))
-    fixed = []
+    fixed, loose = [], []
     for p in deck.points:
         att = ends.get(p.id, [])
         if p.kind == "other":
@@ -139,31 +149,53 @@ def _chain(deck: Deck) -> tuple[list[tuple[int, bool]], DeckPoint, DeckPoint]:
                 if len(fixed) > 2:
                     raise DeckError(src, p.line, f"point {p.id} is a third fixed or coupled "
                                     "end; a scene has two (the anchor and the hang-off)")
+                if _loads(p) or any(p.force):
+                    raise DeckError(src, p.line, f"point {p.id} ({p.attachment}): a mass, "
+                                    "volume, CdA, Ca or force on a fixed or coupled end "
+                                    "cannot be imported: a scene's fixed ends carry no "
+                                    "point loads (attachments sit on the line)")
             if len(att) > 1:
                 raise DeckError(src, p.line, f"point {p.id} ({p.attachment}) holds "
                                 f"{len(att)} lines; a scene's ends each hold one")
         elif att:
-            if p.mass or p.volume or p.CdA or p.Ca:
-                raise DeckError(src, p.line, f"point {p.id}: a free point with mass, volume, "
-                                "CdA or Ca (a clump weight or a float) cannot be imported: "
-                                "a scene's joints carry no point loads")
             if any(p.force):
                 raise DeckError(src, p.line, f"point {p.id}: a free point with a steady force "
                                 "FX FY FZ (a point load) cannot be imported: a scene's "
-                                "joints carry no point loads")
-            if len(att) != 2:
+                                "attachments carry weight, buoyancy and drag only")
+            if len(att) == 1:
+                loose.append(p)
+            elif len(att) != 2:
                 raise DeckError(src, p.line, f"point {p.id} (free) joins {len(att)} line "
                                 "end(s); a scene is one chain: a free point joins exactly two")
-    if len(fixed) < 2:
+    if len(fixed) == 1 and len(loose) == 1:     # a hanging line: its free end at the bottom
+        (bottom,), (top,) = loose, fixed
+        if None in (bottom.x, bottom.y, bottom.z):
+            raise DeckError(src, bottom.line, f"point {bottom.id} (free) has no position (X "
+                            "Y Z must be numbers): a free end starts from its deck position")
+        if bottom.z >= top.z:
+            raise DeckError(src, bottom.line, f"point {bottom.id} (free) is the free end of "
+                            f"the chain from point {top.id}: it must lie below that fixed "
+                            "end (a scene's free end is its bottom end: the line hangs "
+                            "from its hang-off)")
+    elif loose:
+        p = loose[0]
+        raise DeckError(src, p.line, f"point {p.id} (free) joins 1 line end(s); a scene is "
+                        "one chain between two fixed ends (or hanging from one, its free end "
+                        "below): a free point joins exactly two")
+    elif len(fixed) < 2:
         raise DeckError(src, 0, f"has {len(fixed)} fixed or coupled line end(s); a scene "
                         "needs two (the anchor and the hang-off)")
-    bottom, top = sorted(fixed, key=lambda p: (p.z, p.id))
+    else:
+        bottom, top = sorted(fixed, key=lambda p: (p.z, p.id))
     order: list[tuple[int, bool]] = []
+    joints: list[DeckPoint] = []
     pid, used = bottom.id, set()
     while pid != top.id:
         nxt = [(i, e) for i, e in ends[pid] if i not in used]
         if not nxt:
             break
+        if order:
+            joints.append(deck.points[pid - 1])
         i, end = nxt[0]
         used.add(i)
         ln = deck.lines[i]
@@ -173,7 +205,7 @@ def _chain(deck: Deck) -> tuple[list[tuple[int, bool]], DeckPoint, DeckPoint]:
         stray = next(ln for k, ln in enumerate(deck.lines) if k not in used)
         raise DeckError(src, stray.line, f"line {stray.id} is not on the chain from point "
                         f"{bottom.id} to point {top.id}; a scene is one line of segments")
-    return order, bottom, top
+    return order, bottom, top, joints
 
 
 def _depth(deck: Deck, opts: Options, notes: list[str]) -> tuple[float, int, str]:
@@ -203,14 +235,15 @@ def _depth(deck: Deck, opts: Options, notes: list[str]) -> tuple[float, int, str
 
 
 def scene_dict(deck: Deck, name: str, current_file: Path | None,
-               wave_file: Path | None = None) -> tuple[dict, list[str], dict, list[str]]:
+               wave_file: Path | None = None) -> tuple[dict, list[str], dict, dict]:
     """The scene structure of a deck, the notes, key prefix -> deck line (or (file, line)
-    of the wave file, for errors), and the comment lines of its [environment] (where g,
-    the density and the depth came from)."""
+    of the wave file, for errors), and the comment lines above its tables (for dumps: where
+    g, the density and the depth came from, what each attachment was)."""
     _refuse_sections(deck)
     opts = read_options(deck)
     notes = [*deck.notes, *opts.notes]
-    order, bottom, top = _chain(deck)
+    order, bottom, top, joints = _chain(deck)
+    free = bottom.kind == "free"
     used_types = list(dict.fromkeys(deck.lines[i].line_type for i, _ in order))
     for tname in used_types:                 # a type no line uses may hold anything
         if tname in deck.line_type_errors:
@@ -219,11 +252,15 @@ def scene_dict(deck: Deck, name: str, current_file: Path | None,
     where: dict[str, int] = {"environment.water_depth": depth_line}
     dx, dy = top.x - bottom.x, top.y - bottom.y
     span = math.hypot(dx, dy)
-    if span < 1e-9:
+    if span < 1e-9 and not free:
         raise DeckError(deck.source, top.line, f"points {bottom.id} and {top.id} are "
                         "vertically aligned: a scene's hang-off lies at a larger x than its "
                         "anchor")
-    ex = (dx / span, dy / span)
+    ex = (dx / span, dy / span) if span >= 1e-9 else (1.0, 0.0)
+    if span < 1e-9:                 # a line hanging straight down: MoorDyn's X-Z plane
+        span = 0.0
+        notes.append(f"The free end (point {bottom.id}) lies below point {top.id}: the "
+                     "scene's x-y plane is MoorDyn's X-Z plane.")
     ya, yh = bottom.z + depth, top.z + depth
     if yh > depth + 1e-9:
         raise DeckError(deck.source, top.line, f"point {top.id} is above the still water "
@@ -236,7 +273,8 @@ def scene_dict(deck: Deck, name: str, current_file: Path | None,
                   "source": f"MoorDyn v2 deck {Path(deck.source).name}",
                   "environment": {"gravity": opts.g, "water_density": opts.rho,
                                   "water_depth": depth}}
-    current = _current(deck, opts, current_file, ex, depth, notes) if current_file else None
+    current = read_current(deck, opts, current_file, ex, depth, notes) if current_file \
+        else None
     if current:
         data["environment"]["current"] = current
         where["environment.current"] = opts.currents_line
@@ -271,7 +309,20 @@ def scene_dict(deck: Deck, name: str, current_file: Path | None,
                                                                      else "")})
         where[f"segments[{k}]"] = ln.line
     data["ends"] = {"anchor": [0.0, max(ya, 0.0)], "hang_off": [span, yh]}
-    seabed = _seabed(deck, opts, deck.line_types[deck.lines[order[0][0]].line_type], notes)
+    comments = {"environment": [
+        f"water_density {opts.rho:g} kg/m3 {opts.given('rho')}, gravity {opts.g:g} m/s2 "
+        f"{opts.given('g')}: as MoorDyn-C 2.7 reads the deck (its defaults 1025 kg/m3 and "
+        "9.80665 m/s2; the density from rho, Rho or WtrDnsty, never rhoW)",
+        f"water_depth {depth:g} m: {depth_from or 'option WtrDpth'}"]}
+    if free:
+        data["ends"]["anchor_joint"] = {"kind": "free"}
+        where["ends.anchor_joint"] = bottom.line
+        notes.append(f"Point {bottom.id} (Free) is a free end: [ends.anchor_joint] kind = "
+                     "'free', the anchor its starting position; MoorDyn's seabed is not "
+                     "carried (a scene's hanging line clears the seabed).")
+    _attachments(deck, order, bottom if free else None, joints, data, where, comments, notes)
+    seabed = None if free else _seabed(deck, opts, deck.line_types[deck.lines[order[0][0]]
+                                                                   .line_type], notes)
     if seabed:
         data["seabed"] = seabed
         where["seabed"] = opts.kbot_line
@@ -283,12 +334,35 @@ def scene_dict(deck: Deck, name: str, current_file: Path | None,
                      "MoorDyn (no moment); the scene's segments are continuous beams.")
     notes.append("MoorDyn mesh, not carried: " + ", ".join(
         f"line {deck.lines[i].id} {deck.lines[i].segments} segments" for i, _ in order))
-    env_comments = [
-        f"water_density {opts.rho:g} kg/m3 {opts.given('rho')}, gravity {opts.g:g} m/s2 "
-        f"{opts.given('g')}: as MoorDyn-C 2.7 reads the deck (its defaults 1025 kg/m3 and "
-        "9.80665 m/s2; the density from rho, Rho or WtrDnsty, never rhoW)",
-        f"water_depth {depth:g} m: {depth_from or 'option WtrDpth'}"]
-    return data, notes, where, env_comments
+    return data, notes, where, comments
+
+
+def _attachments(deck: Deck, order, free_end: DeckPoint | None, joints: list[DeckPoint],
+                 data: dict, where: dict, comments: dict, notes: list[str]) -> None:
+    """``[[attachments]]`` of the free points with a mass, volume or drag: each at its arc
+    length, the unstretched lengths of the lines below it (0 at a free bottom end)."""
+    placed = [(0.0, free_end)] if free_end is not None else []
+    s = 0.0
+    for (i, _), p in zip(order, joints):
+        s += deck.lines[i].length
+        placed.append((s, p))
+    atts = []
+    for si, p in placed:
+        if not _loads(p):
+            continue
+        key = f"attachments[{len(atts)}]"
+        atts.append({"s": si, "mass": p.mass, "volume": p.volume, "drag_area": p.CdA,
+                     "added_mass_coefficient": p.Ca, "label": f"MoorDyn point {p.id}"})
+        where[key] = p.line
+        comments[key] = [f"MoorDyn point {p.id} ({p.attachment}, deck line {p.line}): mass = "
+                         "M, volume = V, drag_area = CdA, added_mass_coefficient = Ca, at s ="
+                         f" {si:.12g} m " + ("(the free bottom end)" if si == 0.0 else
+                                             "(the unstretched lengths of the lines below)")]
+    if atts:
+        data["attachments"] = atts
+        notes.append("Free points with a mass, volume or drag -> [[attachments]]: " + ", ".join(
+            f"{a['label']} at s = {a['s']:.12g} m" for a in atts) + " (M, V, CdA, Ca -> mass, "
+            "volume, drag_area, added_mass_coefficient).")
 
 
 def _title(deck: Deck, name: str) -> str:
@@ -322,87 +396,3 @@ def _seabed(deck: Deck, opts: Options, lt, notes: list[str]) -> dict | None:
         notes.append("MoorDyn's contact per metre is kBot x d of each line: lines of another "
                      "diameter on the seabed would have another stiffness there.")
     return {"stiffness": k, "friction": opts.friction, "damping": min(zeta, 10.0)}
-
-
-def _current(deck: Deck, opts: Options, path: Path, ex, depth: float,
-             notes: list[str]) -> dict | None:
-    """The scene's [environment.current] from MoorDyn's steady current profile."""
-    mode = opts.currents
-    if mode == 0:
-        return None
-    if mode != 1:
-        raise DeckError(deck.source, opts.currents_line, f"option Currents = {mode:g}: only 1 "
-                        "(a steady profile, current_profile.txt) can be imported; a scene's "
-                        "current is steady and depth-dependent")
-    if not path.exists():
-        raise DeckError(deck.source, opts.currents_line, f"Currents = 1 needs "
-                        f"{path.name} beside the deck (No such file or directory)")
-    text, where = read_text(path, "a MoorDyn current profile")
-    rows = text.splitlines()
-    ez = (ex[1], -ex[0])
-    table = []
-    for no, raw in enumerate(rows[3:], start=4):
-        tok = raw.split("!")[0].split()
-        if not tok:
-            continue
-        if len(tok) < 2:
-            raise DeckError(where, no, "a row is 'z ux [uy [uz]]' [m, m/s]")
-        for c, t in zip(("z", "ux", "uy", "uz"), tok):
-            if is_comma_number(t):
-                raise DeckError(where, no, comma_message(c, t))
-        try:
-            z, ux, uy, uz = (float(t) for t in (tok + ["0", "0"])[:4])
-        except ValueError:
-            raise DeckError(where, no, f"{raw.strip()!r}: not numbers (z ux uy uz)") from None
-        if not all(map(math.isfinite, (z, ux, uy, uz))):
-            raise DeckError(where, no, "values must be finite")
-        if uz:
-            raise DeckError(where, no, f"uz = {uz:g}: a vertical current cannot be imported")
-        table.append((z + depth, ux * ex[0] + uy * ex[1], ux * ez[0] + uy * ez[1], no))
-    if not table:
-        raise DeckError(where, 0, "holds no current rows (after its three header lines)")
-    table.sort()
-    for a, b in zip(table, table[1:]):
-        if b[0] == a[0]:
-            raise DeckError(where, b[3], f"depth {b[0] - depth:g} m given twice")
-    below = [r for r in table if r[0] < 0.0]
-    if below:       # rows below the seabed: the profile's value at the seabed instead
-        above = [r for r in table if r[0] >= 0.0]
-        a, b = below[-1], (above[0] if above else below[-1])
-        f = 0.0 if b[0] == a[0] else -a[0] / (b[0] - a[0])
-        seabed = (0.0, a[1] + f * (b[1] - a[1]), a[2] + f * (b[2] - a[2]), a[3])
-        table = ([] if above and above[0][0] == 0.0 else [seabed]) + above
-        notes.append(f"{path.name}: {len(below)} row(s) below the seabed (Z < -WtrDpth) "
-                     "replaced by the profile's value at the seabed (no node lies below).")
-    ref = max(table, key=lambda r: math.hypot(r[1], r[2]))
-    umax = math.hypot(ref[1], ref[2])
-    if umax == 0.0:
-        return None
-    dx, dz = ref[1] / umax, ref[2] / umax
-    if any(abs(ux * dz - uz * dx) > 1e-9 * umax for _, ux, uz, _ in table):
-        return _turning(table, path, notes)
-    heading = math.degrees(math.atan2(dz, dx))
-    notes.append(f"Current from {path.name}: heading {heading:.6g} deg from the scene's x "
-                 "towards its z.")
-    return {"heights": [r[0] for r in table], "speeds": [r[1] * dx + r[2] * dz for r in table],
-            "heading_deg": heading}
-
-
-def _turning(table: list[tuple], path: Path, notes: list[str]) -> dict:
-    """A profile that turns with depth: ``headings_deg``, the heading of each row's
-    (ux, uz) from the scene's x towards its z, and its speed, the magnitude (a row without
-    current takes the heading of the nearest row with one, below it first: its
-    components stay 0, and no turn is invented)."""
-    speeds = [math.hypot(ux, uz) for _, ux, uz, _ in table]
-    headings = [math.degrees(math.atan2(uz, ux)) if v else None
-                for (_, ux, uz, _), v in zip(table, speeds)]
-    for i, h in enumerate(headings):
-        if h is None:
-            near = sorted((k for k, hk in enumerate(headings) if hk is not None),
-                          key=lambda k: (abs(k - i), k > i))
-            headings[i] = headings[near[0]]
-    notes.append(f"Current from {path.name}: it turns with depth, headings "
-                 f"{min(headings):.6g} to {max(headings):.6g} deg (from the scene's x "
-                 "towards its z): headings_deg, one per height, the velocity interpolated "
-                 "component by component as MoorDyn does.")
-    return {"heights": [r[0] for r in table], "speeds": speeds, "headings_deg": headings}
