@@ -16,6 +16,8 @@ import time
 import tracemalloc
 from pathlib import Path
 
+import numpy as np
+
 from riser.scene import HangOffAngleEnds, Scene
 
 from .solver import solve
@@ -181,7 +183,7 @@ def measure_in_child(scene: Scene) -> dict:
 
 
 def segment_scaling(lazy_wave: Scene, baseline: Scene,
-                    counts: tuple[int, ...] = (3, 10, 50, 100),
+                    counts: tuple[int, ...] = (3, 10, 30, 100),
                     modules: tuple[int, ...] = (1, 5, 25, 50)) -> dict:
     """The cost against the number of segments, each solve in a fresh process: three
     families of rows (segments, nodes, wall time, peak RSS): the same physics cut into
@@ -201,8 +203,12 @@ def segment_scaling(lazy_wave: Scene, baseline: Scene,
     out = {}
     for fam, scenes in fams.items():
         rows = [measure_in_child(sc) for sc in scenes]
+        segs = np.array([r["segments"] for r in rows], float)
+        walls = np.array([r["wall_s"] for r in rows], float)
         out[fam] = {"rows": rows, "wall_ratio_last_over_first": rows[-1]["wall_s"] / rows[0]["wall_s"],
-                    "segments_first_last": [rows[0]["segments"], rows[-1]["segments"]]}
+                    "segments_first_last": [rows[0]["segments"], rows[-1]["segments"]],
+                    # the slope of log(wall) against log(segments) (issue 36)
+                    "exponent": float(np.polyfit(np.log(segs), np.log(walls), 1)[0])}
     return out
 
 
@@ -219,5 +225,6 @@ def scaling_lines(record: dict) -> list[str]:
                          f"{row['rss_before_mb']:7.0f} {row['traced_peak_mb']:7.1f}")
         lines.append(f"  {fam:44s} time {r['segments_first_last'][1]} / "
                      f"{r['segments_first_last'][0]} segments: "
-                     f"{r['wall_ratio_last_over_first']:.2f}")
+                     f"{r['wall_ratio_last_over_first']:.2f}"
+                     + (f"; exponent {r['exponent']:.2f}" if "exponent" in r else ""))
     return lines

@@ -93,7 +93,6 @@ from __future__ import annotations
 import time
 
 import numpy as np
-from scipy.integrate import solve_bvp
 
 from riser.callbacks import with_fraction
 from riser.errors import UnsupportedSceneError
@@ -101,6 +100,7 @@ from riser.modes import PLANES, ModalResult, Mode, mac, normalise_shape, shape_a
 from riser.result import SolveResult, Status
 from riser.scene import Scene
 
+from .collocation import solve_bvp
 from .mesh import clustered_mesh
 from .modal_ends import modal_ends
 from .modal_equations import (FAMILIES, Family, Piece, box_modes, build_pieces,

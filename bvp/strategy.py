@@ -11,13 +11,13 @@ import warnings
 from types import SimpleNamespace
 
 import numpy as np
-from scipy.integrate import solve_bvp
 
 from riser.result import Status
 from riser.scene import FixedEnds, Scene, TopTensionEnds
 from riser.sections import segment_properties
 from riser.settings import BVPSettings
 
+from .collocation import solve_bvp
 from .equations import IT, IY, LiftOffOutside
 from .guess import (
     fold_back,

@@ -126,3 +126,6 @@ class VFIFESettings(_Settings):
     static_weight_continuation_steps: int = spec(10, "integer", table=EXPERT, ge=0, le=1000,
                                                   doc="weight ramp steps when the catenary "
                                                       "start is unusable (0: off)")
+    static_newton: bool = spec(True, "boolean", table=EXPERT,
+                               doc="finish a planar statics by Newton's method on the "
+                                   "final mesh (false: relax every mesh of the sequence)")

@@ -223,7 +223,10 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
             "step_limit": sinfo["step_limit"], "critical_steps": sinfo["critical_steps"],
             "kernel": "planar" if planar else "3d", "static_stages": sinfo["stages"],
             "catenary_tdp_s": sinfo.get("catenary_tdp_s"),
-            "static_continuation": sinfo.get("continuation")}
+            "static_continuation": sinfo.get("continuation"),
+            # Newton's method on the finer meshes (vfife/newton.py): why it stopped where
+            # the relaxation took over (None: it converged, or did not apply)
+            "static_newton_failed": sinfo.get("newton_failed")}
     effects = model.effects
     finite = bool(np.all(np.isfinite(model.X)) and np.all(np.isfinite(model.D)))
     r = model.nodal_results() if finite else None

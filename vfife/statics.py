@@ -10,6 +10,9 @@ Scheme ('catenary + coarse-to-fine dynamic relaxation'):
    finer (:func:`mesh_sequence`: 10 -> 4 -> 1 m, 10 -> 2 -> 0.5 m), and relax again with
    heavier mass-proportional damping; repeat down to the requested element length
    (yu2021-a2-sheared at 0.5 m: 34 s with 10 -> 0.5 m, 5.7 s with 10 -> 2 -> 0.5 m).
+   A planar model (no seabed friction) solves each finer mesh by Newton's method instead
+   (:func:`newton_stage`, vfife/newton.py: O(N) a mesh, the relaxation's N^2 gone), and
+   relaxes only where Newton does not converge.
 
 Both starting shapes are made length-consistent first (:func:`vfife.mesh.length_consistent`:
 every chord exactly l0 (1 + N/EA) with the start's tension N, the hang-off kept by small
@@ -82,14 +85,23 @@ which the force and creep tests do not on a taut line (see :func:`vfife.relaxati
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
-from .end_conditions import joint_directions, needs_straight_start, straight_start
-from .mesh import Mesh, build_mesh, catenary_shape, interpolate_state, length_consistent
+from . import newton
+from .knobs import RelaxationKnobs, scheme_text
+from .mesh import Mesh, build_mesh, length_consistent
 from .model import Model
-from .relaxation import RelaxOutcome, Tolerances, divergence_message, relax, static_inertia
+from .relaxation import (
+    RelaxOutcome,
+    Tolerances,
+    divergence_message,
+    relax,
+    roundoff_floor,
+    static_inertia,
+    weight_scale,
+)
+from .starts import catenary_start, interpolated_start
 from .timestep import choose_step, critical_steps, node_sum
 
 
@@ -141,116 +153,6 @@ def mesh_sequence(h_coarse: float, h: float, ratio: float = 4.0) -> list[float]:
     while out[-1] * ratio < h_coarse / 1.5:
         out.append(out[-1] * ratio)
     return [h_coarse] + out[:0:-1] + [h]
-
-
-@dataclass(frozen=True)
-class RelaxationKnobs:
-    """The ``[vfife]`` and ``[vfife.expert]`` settings the relaxation reads, with the
-    scene's seabed stiffness and the creep tolerance in metres (their defaults and ranges:
-    :class:`riser.settings.VFIFESettings`)."""
-
-    safety: float                 # time step / critical step
-    rot_scale: float              # factor on the rotational inertia
-    max_steps: int                # step budget of the whole relaxation
-    coarse_element_length: float  # [m], first mesh of the sequence
-    axial_damping: float          # axial dashpot, fraction of critical (0: off)
-    damping: float                # x critical of mode 1: coarse mesh and long-mode creep
-    damping_fine: float           # ... on the finer meshes
-    damping_current: float        # ... on the finer meshes with a current
-    creep_tol_m: float            # [m] displacement still to come (0: test off)
-    tension_tol: float            # tension still to come, of the largest (0: test off)
-    moment_tol: float             # moment still to come, of the largest (0: test off)
-    fictitious: bool              # fictitious masses where bending/rotation/seabed limit
-    contact_damping: float        # seabed contact damping, fraction of critical (at least)
-    continuation_steps: int       # weight ramp steps for an unusable catenary start
-    fixed_time_step: float | None  # [s] expert: fixed relaxation step
-    seabed_stiffness: float       # [N/m2], 0 without a seabed
-
-    @classmethod
-    def of(cls, scene) -> "RelaxationKnobs":
-        vf = scene.vfife
-        return cls(vf.time_step_safety, vf.rotational_inertia_scale, vf.max_steps,
-                   vf.coarse_element_length, vf.static_axial_damping, vf.static_damping,
-                   vf.static_damping_fine, vf.static_damping_current,
-                   vf.creep_tolerance * float(sum(sg.length for sg in scene.segments)),
-                   vf.tension_tolerance, vf.moment_tolerance,
-                   vf.static_fictitious_inertia, vf.static_contact_damping,
-                   vf.static_weight_continuation_steps, vf.static_time_step,
-                   scene.seabed.stiffness if scene.seabed is not None else 0.0)
-
-
-def scheme_text(knobs: RelaxationKnobs, stages: list[float], next_damping: float) -> str:
-    """The ``static_scheme`` sentence of summary.json."""
-    damp = (f"{knobs.damping:g} x on the first mesh, {next_damping:g} x on the next ones "
-            f"(then {knobs.damping:g} x while long modes creep)" if len(stages) > 1
-            else f"{knobs.damping:g} x")
-    damp += " critical of mode 1"
-    return ("catenary start, dynamic relaxation, mesh sequencing "
-            f"{' -> '.join(f'{s:g}' for s in stages)} m, viscous mass-proportional damping "
-            f"{damp}, axial dashpot {knobs.axial_damping:g} x critical at the "
-            f"highest axial frequency (stiffness-proportional), rotational inertia "
-            f"x{knobs.rot_scale:g}"
-            + (", fictitious nodal masses and rotational inertias where the bending, "
-               "rotation or seabed spring would limit the step below the axial one "
-               "(contact damping 1 x critical)" if knobs.fictitious else "")
-            + ", length-consistent starting shapes; fictitious inertia "
-            "and damping only, the equilibrium and the out-of-balance force "
-            "(fictitious damping not counted) are unchanged")
-
-
-def catenary_start(scene, mesh: Mesh, h: float, knobs: RelaxationKnobs, info: dict):
-    """The first mesh's start: the extensible catenary through the fixed ends, or, when it
-    is unusable (it misses the hang-off, or its buoyant part dips more than 1 % of the
-    hang-off height below the seabed), the catenary of a uniform line of the mean |w|,
-    whose weight is then ramped to the scene's (continuation in buoyancy; the start only,
-    not the equilibrium). ``h`` [m]: the mesh's element length. Returns (X, D, element
-    tensions [N], the catenary's H [N], the ramp (uniform weight [N/m], steps) or ()); the
-    catenary's figures go into ``info``."""
-    if needs_straight_start(scene):
-        # a vertical, tensioned or free-hanging line: the straight stretched line
-        X, D, tensions, H = straight_start(scene, mesh.s)
-        info["start"] = "straight"
-        return X, joint_directions(scene, D), tensions, H, ()
-    X, D, cinfo = catenary_shape(scene, mesh.s)
-    D = joint_directions(scene, D)
-    span = math.dist(scene.ends.anchor_point, scene.ends.hang_off_point)
-    height = max(abs(float(scene.ends.hang_off[1])), 1.0)
-    ramp = ()
-    if knobs.continuation_steps > 0 and (cinfo["catenary_misfit_m"] > 1e-3 * span
-                                         or cinfo["catenary_below_seabed_m"] > 0.01 * height):
-        # the EI = 0 start is unusable (its buoyant part dips far below the seabed, which
-        # clamping onto it makes far too short, or it misses the hang-off)
-        wu = float(np.sum(np.abs(mesh.weight_pl) * mesh.l0) / np.sum(mesh.l0))
-        info["continuation"] = (
-            f"the EI = 0 catenary start passed {cinfo['catenary_below_seabed_m']:.3g} m "
-            f"below the seabed (misfit {cinfo['catenary_misfit_m']:.3g} m): started "
-            f"from a uniform line of {wu:.4g} N/m and ramped the weight to the "
-            f"scene's in {knobs.continuation_steps} steps on the {h:g} m mesh")
-        X, D, cinfo = catenary_shape(scene, mesh.s, uniform_weight=wu)
-        D = joint_directions(scene, D)
-        ramp = (wu, knobs.continuation_steps)
-    tensions = cinfo.pop("element_tension")
-    info.update(cinfo)
-    return X, D, tensions, cinfo["catenary_H"], ramp
-
-
-def interpolated_start(scene, coarse: Model, mesh: Mesh):
-    """A finer mesh's start: the coarser equilibrium interpolated (cubic spline in s; linear
-    where the spline overshoots below the seabed), clamped ends keeping their direction.
-    Returns (X, D, element tensions [N] interpolated to the new elements' midpoints)."""
-    X, D = interpolate_state(coarse.mesh.s, coarse.positions(), mesh.s)
-    for end in coarse.clamped:          # a clamped end keeps its direction
-        j = 0 if end == "bottom" else -1
-        D[j] = coarse.D[:, j]
-    if scene.seabed is not None:
-        # the cubic spline overshoots below the seabed around the touchdown kink (7 cm
-        # from a 10 m mesh): with a stiff seabed (1e10 N/m2) that penetration launches the
-        # nodes at > 1 km/s; take the linear interpolation there
-        ylin = np.interp(mesh.s, coarse.mesh.s, coarse.X[1])
-        X[:, 1] = np.where(X[:, 1] < 0.0, np.maximum(X[:, 1], ylin), X[:, 1])
-    Nc = coarse.nodal_results()["element_tension"]
-    sc_mid = 0.5 * (coarse.mesh.s[1:] + coarse.mesh.s[:-1])
-    return X, D, np.interp(0.5 * (mesh.s[1:] + mesh.s[:-1]), sc_mid, Nc)
 
 
 def stage_model(scene, mesh: Mesh, X, D, tensions, tension: float, knobs: RelaxationKnobs,
@@ -353,6 +255,49 @@ def relax_stage(model: Model, dt: float, omega1: float, first: bool, tolerance: 
     return r
 
 
+def newton_applies(scene, knobs: RelaxationKnobs, planar: bool, dead_load) -> bool:
+    """Newton's method finishes the statics (vfife/newton.py): a planar model, no seabed
+    friction (path-dependent: the relaxation's), ``[vfife.expert] static_newton``."""
+    friction = scene.seabed is not None and scene.seabed.friction > 0.0
+    return bool(knobs.newton and planar and not friction
+                and (dead_load is None or dead_load[2] == 0.0))
+
+
+def newton_stage(scene, coarse: Model, h: float, tension: float, knobs: RelaxationKnobs,
+                 planar: bool, dead_load, tolerance: float, info: dict, label: str = "",
+                 progress=None):
+    """The final mesh (``h`` [m]) started from the ``coarse`` equilibrium and finished by
+    Newton's method: (model, the stage's result) when it converged (the stage appended to
+    ``info``), else None (the caller relaxes the sequence). The tolerances are the
+    relaxation's: ``tolerance`` x one element's load (force), x its length (moment), no
+    less than the round-off floor."""
+    mesh = build_mesh(scene, h)
+    X, D, tensions = interpolated_start(scene, coarse, mesh)
+    new, dt, limit, steps, iinfo = stage_model(scene, mesh, X, D, tensions, tension,
+                                               knobs, planar, dead_load)
+    wl, hmax = weight_scale(new), float(np.max(mesh.l0))
+    floor_f, floor_m = roundoff_floor(new)
+    if progress is not None:
+        progress(f"vfife statics: {label}, Newton")
+    out = newton.solve(new, max(tolerance * wl, floor_f), max(tolerance * wl * hmax, floor_m))
+    if not out["converged"]:
+        info["newton_failed"] = (f"{label}: Newton's method stopped at {out['residual'] / wl:.3g}"
+                                 f" x element weight after {out['iterations']} iterations; "
+                                 "relaxed instead")
+        return None
+    r = {"steps": 0, "residual": out["residual"] / wl,
+         "moment_residual": out["moment_residual"] / (wl * hmax), "creep_m": 0.0,
+         "tension_to_come": 0.0, "moment_to_come": 0.0, "status": RelaxOutcome.CONVERGED,
+         "wall_s": out["wall_s"], "damping": 0.0, **iinfo}
+    info["stages"].append(
+        {"element_length": h, "elements": mesh.ne, "time_step": dt, "step_limit": limit,
+         "critical_steps": steps, "newton_iterations": out["iterations"],
+         **{k: r[k] for k in ("steps", "residual", "status", "wall_s", "damping", "creep_m",
+                              "tension_to_come", "moment_to_come")},
+         **{k: r[k] for k in ("dt_axial", "mass_factor_max", "rot_factor_max") if k in r}})
+    return new, r
+
+
 def solve_static(scene, element_length: float, tolerance: float, planar: bool,
                  progress=None, dead_load=None) -> tuple[Model, dict]:
     """Static equilibrium of a fixed-ends scene; returns (fine model, info dict).
@@ -372,8 +317,20 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
     info: dict = {"static_scheme": scheme_text(knobs, stages, next_damping)}
     model = None
     total_steps = 0
+    tension = 0.0                     # the line's representative tension [N], per stage
+    use_newton = newton_applies(scene, knobs, planar, dead_load)
     for si, h in enumerate(stages):
         label = f"{h:g} m mesh ({si + 1}/{len(stages)})"      # progress messages
+        if si > 0 and use_newton:
+            # each finer mesh from the coarser equilibrium by Newton's method: O(N) a mesh
+            # (vfife/newton.py); the relaxation where it does not converge
+            fine = newton_stage(scene, model, h, tension, knobs, planar, dead_load,
+                                tolerance, info, label, progress)
+            if fine is not None:
+                model, r = fine
+                tension = float(np.mean(np.abs(model.nodal_results()["element_tension"])))
+                continue
+            use_newton = False
         mesh = build_mesh(scene, h)
         ramp = ()
         if model is None:
@@ -407,6 +364,7 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
             info["diverged"] = divergence_message(scene, h, dt, limit, steps, r["steps"])
             break
         tension = float(np.mean(np.abs(model.nodal_results()["element_tension"])))
+
     last = info["stages"][-1]
     info.update({"steps": total_steps, "residual": last["residual"],
                  "moment_residual": r["moment_residual"], "time_step": last["time_step"],

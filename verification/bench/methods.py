@@ -3,7 +3,8 @@ kernel per element-step for each effect and the solver on the Wang riser fixed a
 hang-off (:mod:`vfife.bench`), the BVP on the Wang baseline, its Table 2 batch and its
 cost against the segment count (:mod:`bvp.bench`), and the analytic method against the
 BVP on the single-section scenes, each pair timed in the same run (speed claims are
-ratios)."""
+ratios), and the VFIFE statics' cost against the mesh with its kernel against a
+copy-only loop (:mod:`vfife.scaling`)."""
 
 from __future__ import annotations
 
@@ -31,6 +32,8 @@ ROD_3D = ("scr-steel-current-90", "yu2021-a3-current-90", "yu2021-a3-current-tur
 DESIGN_SCENE = "scr-steel-fatigue"
 DESIGN_ELEMENT_LENGTH = 2.0
 DESIGN_DURATION = 60.0
+#: the scenes of the VFIFE statics' scaling with the mesh (issue 36)
+SCALING_SCENES = ("scr-steel", "yu2021-a3")
 
 
 def bench_scene() -> Scene:
@@ -63,6 +66,13 @@ def run(out: Path) -> dict:
     bench["analytic"] = {n: {"analytic_s": a_t[n], "bvp_s": b_t[n], "bvp_over_analytic":
                              b_t[n] / a_t[n]} for n in a_t}
     bench["design"] = design_cost()
+    # the VFIFE statics against the mesh and its kernel against a copy-only loop (issue 36)
+    from vfife import solve as vfife_solve
+    from vfife.scaling import kernel_over_copy, statics_scaling
+    bench["vfife_scaling"] = {
+        "statics": [statics_scaling(resolve(n)) for n in SCALING_SCENES],
+        "kernel": kernel_over_copy(resolve(SCALING_SCENES[0]),
+                                   vfife_solve(resolve(SCALING_SCENES[0])).solver_state)}
     (out / "bench.json").write_text(json.dumps(bench, indent=2) + "\n")
     return bench
 
@@ -107,6 +117,9 @@ def summary_lines(bench: dict) -> list[str]:
     if "bvp_rod" in bench:
         from bvp.bench import rod_lines
         lines.extend(rod_lines(bench["bvp_rod"]))
+    if "vfife_scaling" in bench:
+        from vfife.scaling import scaling_lines as vfife_scaling_lines
+        lines.extend(vfife_scaling_lines(bench["vfife_scaling"]))
     if "design" in bench:
         d = bench["design"]
         lines.append(f"design checks on/off: {d['scene']} dynamic run ({d['duration_s']:g} s at "
