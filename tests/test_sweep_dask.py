@@ -244,7 +244,7 @@ def _machine_busy_s() -> tuple[float, int]:
 @needs_dask
 @pytest.mark.slow
 @pytest.mark.skipif((os.cpu_count() or 1) < 2, reason="throughput with 2 workers needs 2 cores")
-def test_two_workers_raise_the_throughput_on_every_engine(monkeypatch):
+def test_two_workers_raise_the_throughput_on_every_engine(monkeypatch, tmp_path):
     # riser-verify bench --sweep on the built-in scr-envelope (12 cases of ~1.6 s): two
     # workers must beat one on both engines, by as much as the cores left free by the
     # other processes of the machine allow. Measured per engine run (1 local worker, 2
@@ -285,8 +285,16 @@ def test_two_workers_raise_the_throughput_on_every_engine(monkeypatch):
         return out
 
     monkeypatch.setattr(bench, "_time_engine", measured)
+    # the built-in sweep's cases as heavy as they were measured (~1.6 s: the VFIFE's
+    # relaxation on every mesh): with Newton's finish of the statics a case takes ~0.3 s
+    # and the pool's spawn and imports, not the engines, decide the speed-up (1.09x)
+    from verification.sweeps.file import builtin_sweeps
+    text = builtin_sweeps()["scr-envelope"].read_text().replace(
+        '[set]\n', '[set]\n"vfife.expert.static_newton" = false\n', 1)
+    path = tmp_path / "scr-envelope.toml"
+    path.write_text(text)
     with Progress("bench --sweep", quiet=True) as prog:
-        b = bench.measure(load_sweep("scr-envelope"), prog)
+        b = bench.measure(load_sweep(str(path)), prog)
     e = b["engines"]
     assert all(e[k]["cases_run"] == 12 and e[k]["cases_failed"] == 0
                for k in ("local_1", "local_2", "dask_2")), e
