@@ -19,6 +19,8 @@ from riser.frame import LinePlane
 from riser.scene import Scene
 from riser.sections import segment_properties
 
+from .end_conditions import end_array
+
 
 @dataclass
 class Mesh:
@@ -120,11 +122,9 @@ def build_mesh(scene: Scene, element_length: float) -> Mesh:
     arrays = {k: np.asarray(v, dtype=float) for k, v in cols.items()}
     s_arr = np.asarray(s)
     s_arr[-1] = props[-1].s_end
-    e = scene.ends
-    springs = tuple(j.rotational_stiffness if j is not None and j.kind == "spring" else 0.0
-                    for j in (e.joint("anchor"), e.joint("hang_off"))) if hasattr(
-        e, "joint") else (0.0, 0.0)
-    return Mesh(s=s_arr, **arrays, end_springs=springs, **_points(scene, s_arr))
+    ends = end_array(scene)                # the flex joints' stiffnesses: slots 0 and 2
+    return Mesh(s=s_arr, **arrays, end_springs=(float(ends[0]), float(ends[2])),
+                **_points(scene, s_arr))
 
 
 def _points(scene: Scene, s: np.ndarray) -> dict:
