@@ -24,6 +24,7 @@ An interrupt (Ctrl-C) at any moment of a local pool stops its workers and is rai
 from __future__ import annotations
 
 import concurrent.futures as cf
+import contextlib
 import multiprocessing as mp
 import os
 import uuid
@@ -94,7 +95,8 @@ def _worker_init(initializer, initargs) -> None:
 
 def _stop(pool) -> None:
     """Drop the queued units of a local pool and end its workers (SIGTERM, then SIGKILL
-    after :data:`STOP_TIMEOUT_S`): no orphan outlives an interrupted run."""
+    after :data:`STOP_TIMEOUT_S`): no orphan outlives an interrupted run, and nothing of
+    the pool holds the interpreter's exit (which joins the executor's manager thread)."""
     if pool is None:
         return
     procs = list((getattr(pool, "_processes", None) or {}).values())
@@ -102,11 +104,11 @@ def _stop(pool) -> None:
     # queue's feeder thread; with the workers terminated no one reads that pipe, and a
     # feeder blocked on a full pipe would hold the join, the manager thread, and the
     # interpreter's exit (which joins it) for ever: the queue's join is cancelled first
-    # (its unsent items are dropped units of an interrupted run). Seen once as a sweep
-    # that did not exit within 60 s of a Ctrl-C 1 s after its start (not reproduced).
+    # (its unsent items are dropped units of an interrupted run).
     queue = getattr(pool, "_call_queue", None)
     if queue is not None:
         queue.cancel_join_thread()
+    results = getattr(pool, "_result_queue", None)     # shutdown() forgets it
     pool.shutdown(wait=False, cancel_futures=True)
     for proc in procs:
         proc.terminate()
@@ -115,6 +117,17 @@ def _stop(pool) -> None:
         if proc.is_alive():
             proc.kill()
             proc.join(1.0)
+    # A worker ended in the middle of sending its result (a case's profiles are ~0.5 MB,
+    # written in several pieces) leaves the manager thread in recv() waiting for the
+    # rest, for ever: this process holds the pipe's other write end. Closing it, with
+    # every worker gone, makes that read end (EOF): the manager sees a broken pool and
+    # ends. Seen as a sweep that printed its line and did not exit within 60 s of a
+    # Ctrl-C 1 s after its start (twice in CI); reproduced with 200 MB results stopped
+    # mid-send (4 of 5 hung) and by tests/test_engine_stop.py.
+    writer = getattr(results, "_writer", None)
+    if writer is not None:
+        with contextlib.suppress(OSError):
+            writer.close()
 
 
 @dataclass
