@@ -103,6 +103,44 @@ def end_offsets(w, L, H: float, V0: float, EA=None) -> tuple[float, float]:
     return float(np.sum(dx)), float(np.sum(dy))
 
 
+def end_offsets_rows(w, L, H) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`end_offsets` of many inextensible lines at once, each starting horizontal
+    (V0 = 0): row i has the segment lengths ``L[i]`` [m] ((k, segments)) and the
+    horizontal tension ``H[i]`` [N] ((k,)); the same weights ``w`` [N/m]. Returns the
+    end's x and y [m], (k,) each."""
+    L = np.asarray(L, float)
+    w = np.asarray(w, float)
+    H = np.asarray(H, float)[:, None]
+    Va = np.zeros_like(L)
+    np.cumsum((w * L)[:, :-1], axis=1, out=Va[:, 1:])
+    dx, dy = _segment_offsets(L, w, H, Va)
+    return dx.sum(axis=1), dy.sum(axis=1)
+
+
+def horizontal_tensions(w, L, dy: float, lo: float, hi: float,
+                        xtol: float = 1e-12) -> np.ndarray:
+    """For each row of segment lengths ``L`` ((k, segments)) of a line starting
+    horizontal: the horizontal tension H [N] whose end rises ``dy`` [m], found by
+    bisection on log H in [``lo``, ``hi``] to ``xtol``, all rows at once; NaN where the
+    end's height minus dy has one sign at both ends of the bracket."""
+    L = np.asarray(L, float)
+    k = L.shape[0]
+
+    def f(lh):
+        return end_offsets_rows(w, L, np.exp(lh))[1] - dy
+
+    a, b = np.full(k, lo), np.full(k, hi)
+    fa = f(a)
+    ok = fa * f(b) <= 0.0
+    while float(np.max(b - a)) > xtol:
+        m = 0.5 * (a + b)
+        fm = f(m)
+        left = fa * fm <= 0.0
+        b = np.where(left, m, b)
+        a, fa = np.where(left, a, m), np.where(left, fa, fm)
+    return np.where(ok, np.exp(0.5 * (a + b)), np.nan)
+
+
 def pinned(w, L, dx: float, dy: float, EA=None) -> tuple[float, float] | None:
     """(H, V0) [N] of the catenary from a pinned end to another at (dx, dy) [m] from it
     (``w``, ``L``, ``EA`` as :func:`end_offsets`), or None when the search finds none.

@@ -17,7 +17,8 @@ import math
 import numpy as np
 from scipy.optimize import brentq, least_squares
 
-from .catenary import catenary_state, end_offsets, pinned
+from .catenary import catenary_state, end_offsets, end_offsets_rows, \
+    horizontal_tensions, pinned
 
 
 class BVPFailure(RuntimeError):
@@ -179,12 +180,20 @@ def grounded(w, L, dx, dy, anywhere: bool = False):
         ex, ey = end_offsets(w, Ls, H, 0.0)
         return ex + float(np.sum(L - Ls)), ey
 
+    lo, hi = math.log(1e-6 * np.sum(np.abs(w) * L) + 1e-3), math.log(1e3 * np.sum(np.abs(w) * L) + 1e3)
+
     def H_for(Ls):
         f = lambda lh: top(math.exp(lh), Ls)[1] - dy                # noqa: E731
-        lo, hi = math.log(1e-6 * np.sum(np.abs(w) * L) + 1e-3), math.log(1e3 * np.sum(np.abs(w) * L) + 1e3)
         if f(lo) * f(hi) > 0:
             return None
         return math.exp(brentq(f, lo, hi, xtol=1e-12))
+
+    def misses(rows):
+        """g at every row of segment lengths at once (NaN: no H), to find the bracket;
+        the root itself is found with the scalar g, as before this existed."""
+        H = horizontal_tensions(w, rows, dy, lo, hi)
+        ex = end_offsets_rows(w, rows, np.where(np.isnan(H), 1.0, H))[0]
+        return np.where(np.isnan(H), np.nan, ex + np.sum(L - rows, axis=1) - dx)
 
     def g(Ls):
         H = H_for(Ls)
@@ -206,16 +215,19 @@ def grounded(w, L, dx, dy, anywhere: bool = False):
         searches.append((later, np.linspace(L[0], total - 1e-3 * L[-1], 80), 1e-9 * total))
     for lengths, grid, xtol in searches:
         prev = None
-        for z in grid:
-            v = g(lengths(z))
-            if v is None:
+        for z, v in zip(grid, misses(np.array([lengths(z) for z in grid]))):
+            if np.isnan(v):
                 continue
             if prev is not None and prev[1] * v <= 0:
                 def f(q, cut=lengths):
                     v = g(cut(q))
                     return v if v is not None else 0.0
 
-                zs = brentq(f, min(z, prev[0]), max(z, prev[0]), xtol=xtol)
+                try:
+                    zs = brentq(f, min(z, prev[0]), max(z, prev[0]), xtol=xtol)
+                except ValueError:    # the scalar g has one sign there (g ~ 0 at z)
+                    prev = (z, v)
+                    continue
                 return H_for(lengths(zs)), 0.0, lengths(zs)
             prev = (z, v)
     raise BVPFailure(no_touchdown_reason(w, L, dx, dy))
