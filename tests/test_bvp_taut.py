@@ -25,7 +25,8 @@ import pytest
 
 from builders import line, scene, small_pipe
 import bvp
-from bvp.catenary import _segment_offsets, end_offsets, pinned
+from bvp.catenary import _segment_offsets, end_offsets, end_offsets_rows, \
+    horizontal_tensions, pinned
 
 DIGITS = 40                                     # of the closed form (decimal)
 
@@ -162,6 +163,31 @@ def test_the_pinned_catenary_of_a_buoyant_multi_segment_line():
     x, y = end_offsets(w, L, H, V0, EA)
     assert abs(x - 1200.0) < 1e-9 and abs(y - 600.0) < 1e-9
     assert pinned(w, L, -5.0, 600.0, EA) is None            # needs the hang-off ahead
+
+
+def test_the_grid_of_starting_catenaries_at_once_equals_one_at_a_time():
+    # bvp/guess.grounded finds its bracket with every grid row at once: each row's end
+    # and its H must be those of the scalar end_offsets and a Brent search on the same
+    # bracket (a lazy wave: weights of both signs; rows from the first segment whole to
+    # almost all of it grounded)
+    from scipy.optimize import brentq
+    w, L = np.array([900.0, -600.0, 900.0]), np.array([800.0, 400.0, 1000.0])
+    rows = np.array([[l1, 400.0, 1000.0] for l1 in np.linspace(800.0, 0.8, 9)])
+    H = np.geomspace(1e4, 1e7, 9)
+    x, y = end_offsets_rows(w, rows, H)
+    for i in range(9):
+        xs, ys = end_offsets(w, rows[i], H[i], 0.0)
+        # the same formulas on the same numbers: equal to the sums' rounding
+        assert abs(x[i] - xs) <= 1e-12 * rows[i].sum() and abs(y[i] - ys) <= 1e-12 * rows[i].sum()
+    lo, hi = math.log(1e-3), math.log(1e9)
+    Hb = horizontal_tensions(w, rows, 1200.0, lo, hi)
+    for i in range(9):
+        f = lambda lh: end_offsets(w, rows[i], math.exp(lh), 0.0)[1] - 1200.0  # noqa: E731
+        if f(lo) * f(hi) > 0:
+            assert np.isnan(Hb[i])                 # no H lifts this line's end to 1200 m
+        else:                                      # both to xtol 1e-12 in log H
+            assert Hb[i] == pytest.approx(math.exp(brentq(f, lo, hi, xtol=1e-12)), rel=1e-11)
+    assert np.isfinite(Hb).sum() == 7              # both kinds of row met (measured 7 of 9)
 
 
 # ------------------------------------------------------------------ the BVP on taut lines
