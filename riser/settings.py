@@ -127,5 +127,6 @@ class VFIFESettings(_Settings):
                                                   doc="weight ramp steps when the catenary "
                                                       "start is unusable (0: off)")
     static_newton: bool = spec(True, "boolean", table=EXPERT,
-                               doc="finish a planar statics by Newton's method on the "
-                                   "final mesh (false: relax every mesh of the sequence)")
+                               doc="solve the finer meshes of a statics by Newton's "
+                                   "method (without seabed friction; false: relax every "
+                                   "mesh of the sequence)")

@@ -278,7 +278,7 @@ def test_in_plane_dead_load_planar_and_3d_kernels_agree():
     :func:`vfife.solve` runs) and the 3D kernels (``solve_static(planar=False)``) give
     the same line to round-off (the two paths of tests/test_vfife_planar_3d.py; z stays
     exactly 0 on the 3D path)."""
-    # the two kernel paths' relaxations (Newton's finish, planar only, off)
+    # the two kernel paths' relaxations (Newton's finish off)
     scene = builders.scene(hanging(W_LINE)).replace(**{"vfife.expert.static_newton": False})
     load = (40.0, -20.0, 0.0)
     vf = scene.vfife

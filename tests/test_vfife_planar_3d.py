@@ -109,7 +109,7 @@ def run(data: dict, planar: bool, static=None):
     scene = builders.scene(data)
     assert scene.is_planar
     # the two kernel paths' relaxations compared step for step: Newton's finish
-    # (vfife/newton.py, planar models only) off
+    # (vfife/newton.py) off
     scene = scene.replace(**{"vfife.expert.static_newton": False})
     vf = scene.vfife
     model, sinfo = solve_static(scene, vf.element_length, vf.static_tolerance, planar)

@@ -10,9 +10,9 @@ Scheme ('catenary + coarse-to-fine dynamic relaxation'):
    finer (:func:`mesh_sequence`: 10 -> 4 -> 1 m, 10 -> 2 -> 0.5 m), and relax again with
    heavier mass-proportional damping; repeat down to the requested element length
    (yu2021-a2-sheared at 0.5 m: 34 s with 10 -> 0.5 m, 5.7 s with 10 -> 2 -> 0.5 m).
-   A planar model (no seabed friction) solves each finer mesh by Newton's method instead
-   (:func:`newton_stage`, vfife/newton.py: O(N) a mesh, the relaxation's N^2 gone), and
-   relaxes only where Newton does not converge.
+   Without seabed friction each finer mesh is solved by Newton's method instead, planar
+   or 3D (:func:`newton_stage`, vfife/newton.py: O(N) a mesh, the relaxation's N^2 gone),
+   and relaxed only where Newton does not converge.
 
 Both starting shapes are made length-consistent first (:func:`vfife.mesh.length_consistent`:
 every chord exactly l0 (1 + N/EA) with the start's tension N, the hang-off kept by small
@@ -255,12 +255,11 @@ def relax_stage(model: Model, dt: float, omega1: float, first: bool, tolerance: 
     return r
 
 
-def newton_applies(scene, knobs: RelaxationKnobs, planar: bool, dead_load) -> bool:
-    """Newton's method finishes the statics (vfife/newton.py): a planar model, no seabed
-    friction (path-dependent: the relaxation's), ``[vfife.expert] static_newton``."""
+def newton_applies(scene, knobs: RelaxationKnobs) -> bool:
+    """Newton's method finishes the statics (vfife/newton.py): no seabed friction
+    (path-dependent: the relaxation's), ``[vfife.expert] static_newton``."""
     friction = scene.seabed is not None and scene.seabed.friction > 0.0
-    return bool(knobs.newton and planar and not friction
-                and (dead_load is None or dead_load[2] == 0.0))
+    return bool(knobs.newton and not friction)
 
 
 def newton_stage(scene, coarse: Model, h: float, tension: float, knobs: RelaxationKnobs,
@@ -318,7 +317,7 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
     model = None
     total_steps = 0
     tension = 0.0                     # the line's representative tension [N], per stage
-    use_newton = newton_applies(scene, knobs, planar, dead_load)
+    use_newton = newton_applies(scene, knobs)
     for si, h in enumerate(stages):
         label = f"{h:g} m mesh ({si + 1}/{len(stages)})"      # progress messages
         if si > 0 and use_newton:
