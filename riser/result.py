@@ -106,11 +106,14 @@ class DynamicsResult:
         ``tension`` (k, n) [N], ``moment`` (k, n) [N m], ``moment_vector`` (k, n, 3)
         [N m] (global components); None unless
         ``[dynamics] save_states``.
+    checkpoint : the run's state at the time asked for (``vfife.solve(checkpoint_at=)``,
+        a :class:`vfife.dynamics.Checkpoint`) to continue the run from; else None.
     """
 
     timeseries: dict
     envelope: dict
     states: dict | None
+    checkpoint: object = None
 
     def write(self, out_dir: str | Path) -> list[str]:
         """timeseries.csv and envelope.csv (10 significant digits, empty for NaN), and

@@ -24,12 +24,20 @@ impulsive start rings the line axially for the whole run).
 
 Outputs: see :mod:`vfife.dynamic_outputs` (time series every ``output_interval``,
 envelopes and statistics from ``statistics_start``, states on request).
+
+Checkpoints: a run can keep its complete state at a given time (:class:`Checkpoint`, a
+copy of the model) and another run of the same scene, with a later duration and
+statistics start, continue from it: bit for bit the run that started at t = 0, its
+outputs from the checkpoint on (the dynamic comparison's settling: a window that has not
+settled is taken again later without integrating the start-up a second time).
 """
 
 from __future__ import annotations
 
+import copy
 import math
 import time
+from dataclasses import dataclass
 from enum import StrEnum
 
 import numpy as np
@@ -54,6 +62,20 @@ class DynamicsOutcome(StrEnum):
     OK = "ok"
     #: NaN/inf, a runaway speed or an energy growth the motion cannot explain
     BLOW_UP = "blow-up"
+
+
+@dataclass
+class Checkpoint:
+    """A dynamic run's complete state at the end of envelope interval ``j`` (time ``t``
+    [s]): the model (a copy), the kinetic energy then [J] and the energy guard's
+    reference (None before its first interval), for :func:`run_dynamics` to continue
+    from."""
+
+    j: int
+    t: float
+    model: Model
+    ke: float
+    e0: float | None
 
 
 def wave_speed_hint(scene, comp) -> float:
@@ -87,9 +109,16 @@ def blow_up_cause(info: dict) -> str:
     return "; ".join(causes)
 
 
-def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Model, dict]:
+def run_dynamics(scene, static: Model, planar: bool, progress=None, *,
+                 checkpoint_at: float | None = None,
+                 resume: Checkpoint | None = None) -> tuple[Model, dict]:
     """Integrate the scene's [dynamics] from the static state ``static`` (its dead load,
     if any, carries over: :class:`vfife.model.Model`).
+
+    ``checkpoint_at`` [s]: keep the state at the first sampling time at or after it as
+    info['checkpoint'] (a :class:`Checkpoint`; None if the run ends before). ``resume``:
+    continue from that checkpoint (a run of the same scene and static state) instead of
+    starting at t = 0; the time series and states then start at the checkpoint's time.
 
     Returns (model at the end, info) where info holds 'timeseries' (dict of arrays),
     'envelope' (dict of arrays along s), 'states' (dict for npz, None unless
@@ -106,11 +135,14 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
     mesh = static.mesh
     added = any(scene.line_types[s.line_type].added_mass > 0.0 for s in scene.segments)
     rot_scale = vf.rotational_inertia_scale_dynamics
-    model = Model(scene, mesh, rot_scale=rot_scale, added_mass=added, planar=planar,
-                  drag=True, surface=True, flow="dynamic", dead_load=static.dead_load,
-                  waves=True)
-    model.X[:] = static.X
-    model.D[:] = static.D
+    if resume is None:
+        model = Model(scene, mesh, rot_scale=rot_scale, added_mass=added, planar=planar,
+                      drag=True, surface=True, flow="dynamic", dead_load=static.dead_load,
+                      waves=True)
+        model.X[:] = static.X
+        model.D[:] = static.D
+    else:
+        model = copy.deepcopy(resume.model)
     tm = dyn.top_motion
     kseabed = scene.seabed.stiffness if scene.seabed is not None else 0.0
     tmax = float(np.max(np.abs(static.nodal_results()["element_tension"])))
@@ -164,10 +196,12 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
              "emerging": model.use_surface and not emerge}
 
     t0 = time.perf_counter()
-    rec.sample(0.0, model, 0.0, True)
+    j0 = 0 if resume is None else resume.j
+    rec.sample(j0 * env_dt, model, 0.0 if resume is None else resume.ke, j0 % per_out == 0)
     status, message = DynamicsOutcome.OK, "dynamics completed"
-    e0 = None
-    for j in range(n_env):
+    e0 = None if resume is None else resume.e0
+    checkpoint = None
+    for j in range(j0, n_env):
         tj = np.linspace(j * env_dt, (j + 1) * env_dt, nsub + 1)
         disp = path(tj)
         if model.use_waves:
@@ -188,6 +222,9 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
                        f"energy {ke:.3g} J); likely cause: " + blow_up_cause(cause))
             break
         rec.sample(t, model, ke, (j + 1) % per_out == 0)
+        if (checkpoint_at is not None and checkpoint is None
+                and t >= checkpoint_at - 0.5 * env_dt):
+            checkpoint = Checkpoint(j + 1, t, copy.deepcopy(model), ke, e0)
         if report is not None and ((j + 1) % max(1, n_env // PROGRESS_REPORTS) == 0
                                    or j + 1 == n_env):
             report(f"dynamics t = {t:.1f} / {dyn.duration:g} s", fraction=(j + 1) / n_env)
@@ -203,5 +240,6 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None) -> tuple[Mod
         "effects": model.effects + (["top_motion"] if tm is not None else [])
         + (["vessel_motion"] if scene.vessel is not None else []),
         "ramp_time": tm.ramp if tm is not None else 0.0,
+        "checkpoint": checkpoint,
     }
     return model, info

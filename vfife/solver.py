@@ -156,7 +156,7 @@ def make_profile(model: Model, scene: Scene) -> Profile:
 
 
 def solve(scene: Scene, *, element_length: float | None = None, tolerance: float | None = None,
-          progress=None, dead_load=None) -> SolveResult:
+          progress=None, dead_load=None, checkpoint_at: float | None = None) -> SolveResult:
     """Solve a fixed-ends scene (statics, then dynamics if the scene has [dynamics]).
 
     element_length [m]: default ``[vfife] element_length`` (1 m); tolerance: largest nodal
@@ -176,6 +176,8 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
     failed run has a status other than converged (diverged, not_converged) and profile
     None, with the reason in ``message``.
     ``wall_time_s`` excludes Numba compilation (reported as info['compile_s']).
+    checkpoint_at [s]: with [dynamics], keep the run's state at that time as
+    ``result.dynamics.checkpoint`` (:func:`vfife.dynamics.run_dynamics`).
     """
     vf = scene.vfife.override(element_length=element_length, static_tolerance=tolerance)
     h, tol = vf.element_length, vf.static_tolerance
@@ -264,7 +266,7 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
                f"estimated creep {sinfo['creep_m']:.2g} m, after {sinfo['steps']} steps")
     if scene.dynamics is None:
         return result(Status.CONVERGED, message, profile, solver_state=model)
-    _, dinfo = run_dynamics(scene, model, planar, progress)
+    _, dinfo = run_dynamics(scene, model, planar, progress, checkpoint_at=checkpoint_at)
     effects = dinfo["effects"]
     info.update({"dynamic_time_step": dinfo["time_step"], "dynamic_steps": dinfo["steps"],
                  "dynamic_step_limit": dinfo["step_limit"], "dynamic_wall_s": dinfo["wall_s"],
@@ -282,7 +284,7 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
         info["states_file"] = ("states.npz (t (k,), s (n,), x (k, n, 3), v (k, n, 3), "
                                "tension (k, n), moment (k, n))")
     return result(Status.CONVERGED, message, profile, solver_state=model,
-                  dynamics=DynamicsResult(ts, env, states))
+                  dynamics=DynamicsResult(ts, env, states, dinfo["checkpoint"]))
 
 
 def _to_come(value, unit: str, of: str) -> str:

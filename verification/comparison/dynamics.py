@@ -9,9 +9,9 @@ times the line's longest natural period if longer (:func:`ramp_periods`);
 :data:`SETTLE_PERIODS` periods for the start-up transient to decay (drag is the only
 damping of a still-water line, and at small amplitude it is light: a transient of the
 lowest modes lasts tens of periods), doubled while the window's two halves disagree
-(:data:`.dynamic_rows.DRIFT_LIMIT`); then a window of :data:`WINDOW_PERIODS` periods
-sampled :data:`SAMPLES_PER_PERIOD` times
-a period; its statics are converged :data:`STATIC_TIGHTENING` times tighter than the
+(:data:`.dynamic_rows.DRIFT_LIMIT`; the run continued, :mod:`.dynamic_vfife`); then
+a window of :data:`WINDOW_PERIODS` periods sampled :data:`SAMPLES_PER_PERIOD` times a
+period; its statics are converged :data:`STATIC_TIGHTENING` times tighter than the
 default, because the static residual is released as a free oscillation whose size does
 not scale with the amplitude (measured on yu2021-a3 at 2 m elements: 15 mm of free motion
 from the default tolerances, 1.5 mm at a tenth of them). At every node the window is
@@ -32,13 +32,11 @@ linear model, named ``slack_over_cycle``, rows not judged.
 from __future__ import annotations
 
 import math
-import time
 from dataclasses import dataclass, field
 
 import numpy as np
 
 import bvp
-import vfife
 from bvp.harmonic import require_harmonic, require_wave, solve_harmonic
 from riser.dynamics import Dynamics, TopMotion
 from riser.errors import SceneError, SolveFailed, UnsupportedSceneError
@@ -46,22 +44,14 @@ from riser.response import HarmonicResponse, harmonic_motion, motion_amplitudes
 from riser.scene import FixedEnds, Scene
 from verification.pipeline import vfife_equivalent
 
-from . import harmonics
-from .dynamic_rows import ABOVE_SMALLEST, DRIFT_LIMIT, agreement_rows, nonlinearity, \
-    station_rows
+from .dynamic_rows import ABOVE_SMALLEST, agreement_rows, nonlinearity, station_rows
+from .dynamic_vfife import SETTLE_PERIODS, settled_run
 
 RAMP_PERIODS = 3
 #: the ramp lasts at least this many of the line's longest natural period (see
 #: :func:`ramp_periods`)
 RAMP_FUNDAMENTALS = 2.0
-SETTLE_PERIODS = 6
 WINDOW_PERIODS = 12
-#: the settling is doubled (up to :data:`MAX_SETTLE_PERIODS`) while the first harmonic of
-#: the tension changes by more than :data:`.dynamic_rows.DRIFT_LIMIT` of its peak between
-#: the window's two halves (in still water the drag damps the start-up transient in
-#: proportion to the amplitude: measured on the flexible jumper's 0.1 m heave, 0.16 %
-#: drift after 9 periods and a moment 1.2 % off, 0.06 % and 0.66 % after 18)
-MAX_SETTLE_PERIODS = 24
 SAMPLES_PER_PERIOD = 40
 #: the VFIFE's static tolerances (force, tension, moment, creep) times this
 STATIC_TIGHTENING = 0.1
@@ -312,25 +302,13 @@ def compare_dynamics(scene: Scene, *, amplitudes=None, element_length: float | N
             raise UnsupportedSceneError(fd.message)
         if not fd.converged:
             raise SolveFailed("bvp", fd.status, f"frequency domain: {fd.message}")
-        settle, wall = SETTLE_PERIODS, 0.0
-        while True:
+        def scene_for(settle, a=a):
             vs = dynamic_scene(matched, axis, a, period, settle, ramp)
-            vs = vs if vfife_modifier is None else vfife_modifier(vs)
-            now(f"vfife: amplitude {a:g} m ({k + 1}/{len(amps)}), {settle} periods to settle")
-            t0 = time.perf_counter()
-            v = vfife.solve(vs, element_length=h, progress=progress)
-            wall += time.perf_counter() - t0
-            if not v.converged:
-                raise SolveFailed("vfife", v.status, f"vfife at amplitude {a:g} m: "
-                                  f"{v.message}")
-            vf = read_vfife(v, period, vs.dynamics.statistics_from, axis)
-            if vf["drift"] <= DRIFT_LIMIT or 2 * settle > MAX_SETTLE_PERIODS:
-                break
-            settle *= 2
-        vf["settle_periods"], vf["ramp_periods"] = settle, ramp
-        sm = v.summary()
-        vf["max_utilisation"] = sm.get("dynamic_max_utilisation")      # with [design]
-        vf["static_s"], vf["static_y"] = v.profile.s, v.profile.y
+            return vs if vfife_modifier is None else vfife_modifier(vs)
+
+        now(f"vfife: amplitude {a:g} m ({k + 1}/{len(amps)})")
+        vf, wall = settled_run(scene_for, period, ramp, axis, h, f"amplitude {a:g} m",
+                               progress)
         rows, zone, warns = agreement_rows(matched, fd, vf, static)
         if k > 0:                  # the linear limit is judged; the rest measures nonlinearity
             for row in rows:
@@ -339,39 +317,3 @@ def compare_dynamics(scene: Scene, *, amplitudes=None, element_length: float | N
         results.append(AmplitudeResult(a, fd, vf, rows, station_rows(fd, vf, static),
                                        nonlinearity(vf, zone), warns, wall, fd.wall_time_s))
     return DynamicComparison(scene, matched, axis, period, h, results, static, notes)
-
-
-def read_vfife(res, period: float, start: float, axis: str = "y") -> dict:
-    """First harmonics of the VFIFE's states over the window from ``start`` [s]: per
-    quantity (tension, moment: in-plane, about z; moment_out: about the static in-plane
-    normal; dx, dy, dz) a :class:`.harmonics.Harmonics`; ``s``; the window's minimum
-    tension; ``drift``: the largest change of the tension amplitude (of the out-of-plane
-    displacement for a motion along z, whose tension changes at second order only)
-    between the window's two halves over its peak (the transient still decaying; the
-    moment's is noisier: in heave its first harmonic can be small beside the
-    transient's)."""
-    st = res.dynamics.states
-    t, s, x = st["t"], st["s"], st["x"]
-    x0 = x[0]
-    tang = np.gradient(x0, s, axis=0)
-    tang /= np.linalg.norm(tang, axis=1)[:, None]
-    normal = np.stack([-tang[:, 1], tang[:, 0], np.zeros_like(s)], axis=1)
-    mv = st["moment_vector"]
-    series = {"tension": st["tension"].T, "moment": mv[:, :, 2].T,
-              "moment_out": np.einsum("kni,ni->nk", mv, normal),
-              "dx": x[:, :, 0].T, "dy": x[:, :, 1].T, "dz": x[:, :, 2].T}
-    out = {k: harmonics.fit(t, q, period, start) for k, q in series.items()}
-    sel = t >= start - 1e-9
-    out["s"] = s
-    out["min_tension"] = float(np.min(st["tension"][sel]))
-    half = start + 0.5 * (t[-1] - start)
-    first = t <= half + 1e-9
-    drift = 0.0
-    for key in (("dz",) if axis == "z" else ("tension",)):
-        peak = float(np.max(out[key].amplitude))
-        if peak > 1e-9 * max(float(np.max(np.abs(series[key]))), 1e-300):
-            a = harmonics.fit(t[first], series[key][:, first], period, start).amplitude
-            b = harmonics.fit(t, series[key], period, half).amplitude
-            drift = max(drift, float(np.max(np.abs(a - b))) / peak)
-    out["drift"], out["axis"] = drift, axis
-    return out
