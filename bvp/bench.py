@@ -6,6 +6,7 @@ about the time of the same line of 3). Scenes come in as arguments."""
 from __future__ import annotations
 
 import dataclasses
+import math
 import os
 import pickle
 import resource
@@ -79,6 +80,40 @@ def rod_ratios(planar: list[Scene], three_d: list[Scene], repeats: int = 3) -> d
         _timed(sc)
         out["3d"][sc.name] = {"rod_s": statistics.median(_timed(sc)[0] for _ in range(repeats))}
     return out
+
+
+def against_reference(scenes: list[Scene], repeats: int = 3) -> dict:
+    """Each scene solved as the BVP solves it and as it did before issue 36 (scipy's own
+    solve_bvp, unpruned: :func:`bvp.collocation.unpruned`; the grounded guess's grid
+    scanned point by point, each point's end sampled: :data:`bvp.guess.SCALAR_GRID`),
+    alternately, best of
+    ``repeats`` each: {"scenes": {name: {"reference_s", "bvp_s"}}, "reference_s", "bvp_s",
+    "speed_up"} (the totals [s] and their ratio). The two give the same solution (the
+    same guess; the factorisation's pivot order differs, tests/test_vfife_newton.py)."""
+    from .collocation import unpruned
+    from .guess import SCALAR_GRID
+    rows = {}
+    for sc in scenes:
+        best = {"reference_s": math.inf, "bvp_s": math.inf}
+        for _ in range(repeats):
+            with unpruned():
+                SCALAR_GRID.on = True
+                try:
+                    best["reference_s"] = min(best["reference_s"], _timed(sc)[0])
+                finally:
+                    SCALAR_GRID.on = False
+            best["bvp_s"] = min(best["bvp_s"], _timed(sc)[0])
+        rows[sc.name] = best
+    ref = sum(r["reference_s"] for r in rows.values())
+    new = sum(r["bvp_s"] for r in rows.values())
+    return {"scenes": rows, "reference_s": ref, "bvp_s": new, "speed_up": ref / new}
+
+
+def reference_lines(rec: dict) -> list[str]:
+    """The console's line on :func:`against_reference`."""
+    return [f"BVP against its solver before issue 36 (scipy's own solve_bvp, the guess's "
+            f"grid point by point), {len(rec['scenes'])} scenes side by side, best of each: "
+            f"{rec['reference_s']:.2f} -> {rec['bvp_s']:.2f} s, x{rec['speed_up']:.2f}"]
 
 
 def rod_lines(rec: dict) -> list[str]:

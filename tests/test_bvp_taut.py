@@ -171,7 +171,7 @@ def test_the_grid_of_starting_catenaries_at_once_equals_one_at_a_time():
     # bracket (a lazy wave: weights of both signs; rows from the first segment whole to
     # almost all of it grounded)
     from scipy.optimize import brentq
-    w, L = np.array([900.0, -600.0, 900.0]), np.array([800.0, 400.0, 1000.0])
+    w = np.array([900.0, -600.0, 900.0])       # segments 800, 400 and 1000 m
     rows = np.array([[l1, 400.0, 1000.0] for l1 in np.linspace(800.0, 0.8, 9)])
     H = np.geomspace(1e4, 1e7, 9)
     x, y = end_offsets_rows(w, rows, H)
@@ -289,3 +289,23 @@ def test_the_taut_line_grid_converges_wherever_an_equilibrium_exists():
         if balance > 1e-5:
             bad.append((ho, w, EA, slack, anchor, seabed, "force balance", balance))
     assert not bad, bad
+
+
+@pytest.mark.parametrize("name", ["scr-steel", "yu2021-a3"])
+def test_the_grid_at_once_gives_the_guess_of_the_point_by_point_scan(name):
+    # the bench's reference (bvp.guess.SCALAR_GRID: the scan before issue 36, each grid
+    # point's H by Brent and the end by sampling the catenary's state) and the grid at
+    # once find the same bracket and then the same root by the same scalar search: the
+    # same guess, so the same solve, bit for bit
+    from bvp.guess import SCALAR_GRID
+    from verification.catalog import resolve
+    import bvp
+    sc = resolve(name)
+    a = bvp.solve(sc).require()
+    SCALAR_GRID.on = True
+    try:
+        b = bvp.solve(sc).require()
+    finally:
+        SCALAR_GRID.on = False
+    for key in ("s", "x", "y", "tension", "moment"):
+        assert np.array_equal(getattr(a.profile, key), getattr(b.profile, key)), key

@@ -63,6 +63,10 @@ def run(out: Path) -> dict:
     # the analytic method against the BVP on the same single-section scenes, side by side
     single = [resolve(n) for n in ANALYTIC_BENCH_SCENES]
     a_t, b_t = analytic_times(single), bvp_times(single)
+    # the BVP against its solver before issue 36 on the compare study's scenes
+    from bvp.bench import against_reference
+    from verification.studies.compare import COMPARE_SCENES
+    bench["bvp_reference"] = against_reference([resolve(n) for n in COMPARE_SCENES])
     bench["analytic"] = {n: {"analytic_s": a_t[n], "bvp_s": b_t[n], "bvp_over_analytic":
                              b_t[n] / a_t[n]} for n in a_t}
     bench["design"] = design_cost()
@@ -117,6 +121,9 @@ def summary_lines(bench: dict) -> list[str]:
     if "bvp_rod" in bench:
         from bvp.bench import rod_lines
         lines.extend(rod_lines(bench["bvp_rod"]))
+    if "bvp_reference" in bench:
+        from bvp.bench import reference_lines
+        lines.extend(reference_lines(bench["bvp_reference"]))
     if "vfife_scaling" in bench:
         from vfife.scaling import scaling_lines as vfife_scaling_lines
         lines.extend(vfife_scaling_lines(bench["vfife_scaling"]))
