@@ -65,7 +65,7 @@ def run(out: Path) -> dict:
     a_t, b_t = analytic_times(single), bvp_times(single)
     # the BVP against its solver before issue 36 on the compare study's scenes
     from bvp.bench import against_reference
-    from verification.studies.compare import COMPARE_SCENES
+    from verification.catalog import COMPARE_SCENES
     bench["bvp_reference"] = against_reference([resolve(n) for n in COMPARE_SCENES])
     bench["analytic"] = {n: {"analytic_s": a_t[n], "bvp_s": b_t[n], "bvp_over_analytic":
                              b_t[n] / a_t[n]} for n in a_t}

@@ -12,27 +12,12 @@ from pathlib import Path
 import pandas as pd
 
 from riser.errors import SolveFailed
-from verification.catalog import resolve
+from verification.catalog import COMPARE_SCENES, resolve
 from verification.comparison.protocol import compare
 from verification.comparison.report import write
 
 from .study import Study
 
-#: scenes with a comparison report in reports/compare/ (every built-in scene but the hard
-#: cases, which are the stress suite's, and the flow case, liu2021's)
-COMPARE_SCENES = ("wang2014-baseline", "wang2014-current-neg1p5", "wang2014-current-neg0p75",
-                  "wang2014-current-0p75", "wang2014-current-1p5", "scr-steel",
-                  "yu2021-a1", "yu2021-a2", "yu2021-a2-sheared", "yu2021-a3", "yu2021-a4",
-                  "kang2015-jlay",
-                  # 3D (issue 32): currents out of the plane of the ends, turning with depth,
-                  # a hang-off out of the anchor's plane
-                  "scr-steel-current-45", "scr-steel-current-90", "scr-steel-current-turning",
-                  "yu2021-a3-current-45", "yu2021-a3-current-90", "yu2021-a3-current-turning",
-                  "yu2021-a3-hang-off-offset",
-                  # end conditions and point attachments (issue 35): a top-tensioned riser
-                  # clamped at the wellhead, a lazy wave on a flex joint, a chain mooring
-                  # with a clump weight
-                  "ttr-steel", "lazy-wave-flex-joint", "mooring-clump-weight")
 
 
 def run_unit(scene_name: str, out: Path, note: str = "", full: bool = False) -> str:
