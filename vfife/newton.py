@@ -14,7 +14,7 @@ banded (block-tridiagonal) stiffness of a line: one sparse LU, O(N).
 
 Planar models: x, y and the rotation about z per node. A 3D model (a current out of the
 plane): x, y, z and the rotations about two axes normal to each node's director
-(:func:`normal_axes`; the twist is not a DOF of the model), the directors turned by the
+(:func:`vfife.tangent.normal_axes`; the twist is not a DOF of the model), the directors turned by the
 rotation vector the two make. A step that does not lower the residual is halved (up to 6
 times); after ``max_iter`` iterations without meeting the tolerance the caller falls back
 on the relaxation.
@@ -28,7 +28,7 @@ import numpy as np
 import scipy.sparse.linalg as spla
 
 from .model import Model
-from .tangent import NDOF, linearise, rotate
+from .tangent import NDOF, linearise, normal_axes, rotate
 
 #: Newton steps after the tolerance is met (each kept only where it lowers the residual):
 #: quadratic convergence takes the state from the tolerance to the round-off in one, so
@@ -72,19 +72,6 @@ def out_of_balance(model: Model) -> tuple[np.ndarray, np.ndarray]:
     else:
         M[:, held] = 0.0
     return F, M
-
-
-def normal_axes(D: np.ndarray) -> np.ndarray:
-    """(n, 2, 3) unit axes normal to the directors D (3, n) of a 3D state: e_z made normal
-    to d (e_x where d is within 26 deg of e_z), and d x that axis."""
-    ref = np.zeros_like(D)
-    near = np.abs(D[2]) > 0.9
-    ref[2, ~near] = 1.0
-    ref[0, near] = 1.0
-    a = ref - np.sum(ref * D, axis=0) * D
-    a /= np.linalg.norm(a, axis=0)
-    b = np.cross(D, a, axis=0)
-    return np.stack([a.T, b.T], axis=1)
 
 
 def _turned(D0: np.ndarray, basis: np.ndarray, r3: np.ndarray, r4: np.ndarray) -> np.ndarray:

@@ -5,7 +5,8 @@ Degrees of freedom, 5 per node i, global index ``5 i + k``: the translations x, 
 ``basis[i, 1]`` (k = 3, 4), both perpendicular to the director (the twist is not a DOF of
 the model: :mod:`vfife.kernels`). For a planar static state (z = 0, directors in the x-y
 plane) ``basis[i, 0] = e_z`` (the in-plane rotation) and ``basis[i, 1] = e_z x d_i`` (it
-tips the director out of the plane).
+tips the director out of the plane). A 3D state's axes are :func:`normal_axes` (Newton's
+statics out of plane, vfife/newton.py).
 
 Stiffness: the Hessian of the element strain energy, by central differences of the
 kernel's own element forces and moments (:func:`vfife.kernels.element_pass`, the function
@@ -100,6 +101,19 @@ def planar_basis(D: np.ndarray) -> np.ndarray:
     B[:, 1, 1] = D[0]
     B[:, 1] /= np.linalg.norm(B[:, 1], axis=1)[:, None]
     return B
+
+
+def normal_axes(D: np.ndarray) -> np.ndarray:
+    """(n, 2, 3) unit axes normal to the directors D (3, n) of a 3D state: e_z made normal
+    to d (e_x where d is within 26 deg of e_z), and d x that axis."""
+    ref = np.zeros_like(D)
+    near = np.abs(D[2]) > 0.9
+    ref[2, ~near] = 1.0
+    ref[0, near] = 1.0
+    a = ref - np.sum(ref * D, axis=0) * D
+    a /= np.linalg.norm(a, axis=0)
+    b = np.cross(D, a, axis=0)
+    return np.stack([a.T, b.T], axis=1)
 
 
 def rotate(D: np.ndarray, axis: np.ndarray, angle) -> np.ndarray:
