@@ -66,7 +66,8 @@ def sea_state_out_of_plane(scene) -> tuple[str, str] | None:
     if not waves.is_planar:
         return ("environment.waves", "a wave travels out of the x-y plane (headings "
                 + ", ".join(f"{h:g}" for h in waves.headings) + " deg)")
-    if scene.vessel is not None:
+    if scene.vessel is not None and scene.water_depth is not None:
+        # (no depth: check_sea_state refuses the waves; the end checks may ask first)
         comp = waves.components(scene.water_depth, scene.gravity, (0.0, 0.0))
         amp = scene.vessel.hang_off_amplitudes(2.0 * math.pi / comp.omega,
                                                np.degrees(comp.heading))

@@ -172,3 +172,18 @@ def test_attachments_out_of_plane_or_on_a_rigid_seabed_are_refused():
     data["model"] = {"seabed": "rigid", "axial": "extensible"}
     res = bvp.solve(scene(data))
     assert res.status.value == "refused" and "attachments" in res.message
+
+
+def test_two_attachments_at_one_point_are_their_sum():
+    """Found by the feature fuzz (tests/test_fuzz_features.py): two attachments at the same
+    s gave the VFIFE a zero-length element (NaN direction, a LinAlgError). They share a
+    node now; both methods give the line of one attachment carrying their sum (the same
+    equations: the only difference is the sum's round-off)."""
+    data = cable(mass=2000.0, volume=0.25)
+    data["attachments"].append({"s": S_P, "mass": 500.0, "volume": 1.5})
+    split = scene(data)
+    merged = scene(cable(mass=2500.0, volume=1.75))
+    for solve in (bvp.solve, lambda sc: vfife.solve(sc, element_length=2.0)):
+        a, b = solve(split).require().profile, solve(merged).require().profile
+        assert a.tension[-1] == pytest.approx(b.tension[-1], rel=1e-9)
+        assert at(a, S_P, "y") == pytest.approx(at(b, S_P, "y"), abs=1e-6)

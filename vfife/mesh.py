@@ -97,7 +97,12 @@ def build_mesh(scene: Scene, element_length: float) -> Mesh:
     cols: dict[str, list] = {k: [] for k in ("l0", "EA", "EI", "mass_pl", "weight_pl", "rot_pl",
                                              "added_pl", "cdn_pl", "cdt_pl", "fluid_pl")}
     s = [0.0]
-    cuts = sorted(a.s for a in scene.attachments)
+    # attachments at one point (or within 1e-6 of an element of each other) share a node:
+    # a zero-length element between them has no direction (NaN) and no stable step
+    cuts: list[float] = []
+    for c in sorted(a.s for a in scene.attachments):
+        if not cuts or c - cuts[-1] > 1e-6 * element_length:
+            cuts.append(c)
     for p in props:
         # a node at every attachment inside the segment: the spans between them meshed
         # alike

@@ -337,11 +337,15 @@ def _read_ends(t: Table):
         values.update(t.fields(TopTensionEnds, names=("hang_off_height",)))
     else:
         values = t.fields(form)
-        for name, cls in (("anchor_joint", EndJoint), ("hang_off_joint", EndJoint),
-                          ("tensioner", Tensioner)):
-            sub = t.table(name)
-            if sub is not None:
-                values[name] = _read_part(sub, cls)
+    for name, cls in (("anchor_joint", EndJoint), ("hang_off_joint", EndJoint),
+                      ("tensioner", Tensioner)):
+        if form is not FixedEnds:            # the joints and the tensioner hold fixed ends
+            if t.has(name):
+                raise t.error(name, "needs the fixed-ends form of [ends] (anchor + hang_off)")
+            continue
+        sub = t.table(name)
+        if sub is not None:
+            values[name] = _read_part(sub, cls)
     t.finish()
     return t.build(form, **values)
 
