@@ -230,6 +230,8 @@ def hopeless_span(scene: Scene) -> str:
         return _too_little_tension(scene)
     if not isinstance(ends, FixedEnds) or scene.seabed_model is None:
         return ""
+    if ends.tensioner is not None:
+        return ""              # the top's height is free (the tensioner's stroke): no span
     if scene.seabed_model == "rigid" and ends.anchor[1] != 0.0:
         return ""              # free-hanging form, no contact: see hopeless_start
     props = segment_properties(scene)
@@ -272,9 +274,10 @@ def hopeless_start(scene: Scene, prob, tau: np.ndarray) -> tuple[Status, str] | 
     m = prob.model
     y = prob.guess(tau)[IY::m.block] * m.scale[IY]         # (blocks, nodes) [m]
     S = m.s_of(tau, prob.guess_p)                           # their arc lengths [m]
-    if prob.form == "fixed_free":
+    if prob.form == "fixed_free" and getattr(scene.ends, "tensioner", None) is None:
         # a line no seabed could hold either (too long for the span); a shorter one that
-        # dips below y = 0 is solved and warned about (below_seabed, riser.validity)
+        # dips below y = 0 is solved and warned about (below_seabed, riser.validity). A
+        # tensioner frees the top's height (its stroke): no span bounds the line's length
         (xa, ya), (xh, yh) = ends = scene.ends.anchor, scene.ends.hang_off
         L = m.piece_lengths(prob.guess_p)
         if not too_long_for_seabed(m.w, L, *ends):
