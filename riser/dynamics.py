@@ -32,6 +32,20 @@ MAX_TOP_SPEED = 20.0
 MAX_TOP_ACCELERATION = 20.0
 #: a time series' first displacement beyond this [m] without a ramp is a jump at t = 0
 START_JUMP = 1e-9
+#: the most output samples a dynamic run may take (duration / output_interval + 1): each
+#: is held in memory and written to timeseries.csv, ~:data:`SAMPLE_MEMORY` and
+#: :data:`SAMPLE_FILE` bytes, so 1e6 samples are ~0.45 GB and ~0.22 GB (a 3-hour storm
+#: sampled every 0.02 s is 540,000; the built-in scenes take at most 4,000); 1e-6 s in a
+#: 40 s run (4e7 samples, ~18 GB) ran out of memory writing nothing
+MAX_OUTPUT_SAMPLES = 1_000_000
+#: memory of one output sample [B]: ~14 time-series columns as Python floats (32 B)
+SAMPLE_MEMORY = 14 * 32
+#: timeseries.csv bytes of one output sample: ~14 values of 10 significant digits (~16 B)
+SAMPLE_FILE = 14 * 16
+#: the most memory the saved states (``save_states``) may take [B]: 11 float64 per node
+#: and sample (position, velocity, moment vector, tension, moment), held until written
+MAX_STATES_MEMORY = 2.0e9
+STATE_BYTES = 11 * 8
 
 
 @dataclass(frozen=True)
@@ -317,6 +331,14 @@ class Dynamics(Part):
         elif self.output_interval > duration:
             raise error("output_interval", f"must be <= {duration:g} s, got "
                         f"{self.output_interval:g}")
+        samples = self.output_samples
+        if samples > MAX_OUTPUT_SAMPLES:
+            raise error("output_interval", f"gives {samples:.4g} output samples in "
+                        f"{duration:g} s (~{_size(samples * SAMPLE_MEMORY)} of memory, "
+                        f"~{_size(samples * SAMPLE_FILE)} of timeseries.csv): must give at "
+                        f"most {MAX_OUTPUT_SAMPLES:,} samples, output_interval >= "
+                        f"{duration / (MAX_OUTPUT_SAMPLES - 1):.3g} s, got "
+                        f"{self.output_interval:g}")
         if self.statistics_start is not None and not self.statistics_start < duration:
             raise error("statistics_start", f"must be < {duration:g} s, got "
                         f"{self.statistics_start:g}")
@@ -332,9 +354,40 @@ class Dynamics(Part):
                         "top_motion.ramp_time (0: no ramp)")
 
     @property
+    def output_samples(self) -> int:
+        """The number of output samples [-]: every output interval from t = 0 to the
+        duration."""
+        return int(math.floor(self.duration / self.output_interval + 1e-9)) + 1
+
+    @property
     def statistics_from(self) -> float:
         """The time [s] from which envelopes and statistics are taken."""
         if self.statistics_start is not None:
             return float(self.statistics_start)
         ramp = self.top_motion.ramp if self.top_motion is not None else 0.0
         return ramp if ramp < self.duration else 0.0
+
+
+def check_output_size(scene) -> None:
+    """With ``save_states`` the states of every node at every output time fit in
+    :data:`MAX_STATES_MEMORY` (the nodes from the scene's [vfife] element_length; a
+    command line's --element-length is the solver's to check)."""
+    dyn = scene.dynamics
+    if dyn is None or not dyn.save_states:
+        return
+    nodes = math.ceil(scene.total_length / scene.vfife.element_length - 1e-9) + 1
+    size = float(dyn.output_samples) * nodes * STATE_BYTES
+    if size > MAX_STATES_MEMORY:
+        raise scene.error("dynamics.save_states", f"{dyn.output_samples:,} output samples "
+                          f"of {nodes:,} nodes (vfife.element_length "
+                          f"{scene.vfife.element_length:g} m) are ~{_size(size)} of states "
+                          f"in memory: must be <= {_size(MAX_STATES_MEMORY)}; raise "
+                          "dynamics.output_interval, or set save_states = false")
+
+
+def _size(nbytes: float) -> str:
+    """A byte count in kB, MB, GB or TB (decimal)."""
+    for unit, scale in (("TB", 1e12), ("GB", 1e9), ("MB", 1e6), ("kB", 1e3)):
+        if nbytes >= scale:
+            return f"{nbytes / scale:.3g} {unit}"
+    return f"{nbytes:.0f} B"

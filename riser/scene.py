@@ -23,7 +23,7 @@ from typing import Any
 
 from .attachments import Attachment, check_attachments
 from .design.part import Design, check_design
-from .dynamics import Dynamics, TopMotion
+from .dynamics import Dynamics, TopMotion, check_output_size
 from .end_checks import check_end_conditions
 from .ends import (
     END_FORMS,
@@ -149,6 +149,7 @@ class Scene:
         self._check_current()
         self._check_top_motion()
         check_sea_state(self)
+        check_output_size(self)
         check_design(self)
 
     def error(self, key: str, message: str) -> SceneError:

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from ..errors import SceneError
 from ..spec import Part, check_fields, part_error, spec
 from .sn_curves import CURVE_NAMES, ENVIRONMENTS
 
@@ -32,7 +33,30 @@ SAFETY_CLASSES = ("low", "normal", "high")
 LOAD_CLASSES = ("operating", "extreme", "temporary", "survival", "test")
 #: the scatter diagram's probabilities sum to 1 within this (a table of rounded entries)
 PROBABILITY_SUM_TOLERANCE = 1e-3
+#: the round-off allowed in comparing a length with a wall derived from the diameters
+#: (a fraction of the outer diameter; float64 carries 1e-16 of it)
+WALL_ROUND_OFF = 1e-9
 FATIGUE = "fatigue"
+
+
+def _own(value):
+    """A fresh object equal to ``value``: a code-specific key's default, told from a value
+    the input gave (equal, but another object) by identity, so that its type stays the
+    plain float or str (see :meth:`Design.ignored_keys`)."""
+    return "".join(list(value)) if isinstance(value, str) else float(str(value))
+
+
+#: the defaults of the keys one code alone reads (each its own object, :func:`_own`)
+CODE_DEFAULTS = {"safety_class": _own("normal"), "gamma_f": _own(1.1), "gamma_e": _own(1.3),
+                 "gamma_m": _own(1.15), "alpha_u": _own(0.96), "alpha_fab": _own(1.0),
+                 "ovality": _own(0.005), "corrosion_allowance": _own(0.0),
+                 "load_class": _own("operating")}
+
+
+#: the keys only one code's check reads (the other code ignores them)
+CODE_KEYS = {"dnv-st-f201": ("safety_class", "gamma_f", "gamma_e", "gamma_m", "alpha_u",
+                             "alpha_fab", "ovality", "corrosion_allowance"),
+             "api-rp-2rd": ("load_class",)}
 
 
 @dataclass(frozen=True)
@@ -89,22 +113,22 @@ class Design(Part):
 
     code: str = spec("dnv-st-f201", "string", choices=CODES,
                      doc="the code check: DNV's LRFD combined loading or API's von Mises")
-    safety_class: str = spec("normal", "string", choices=SAFETY_CLASSES,
+    safety_class: str = spec(CODE_DEFAULTS["safety_class"], "string", choices=SAFETY_CLASSES,
                              doc="DNV safety class: gamma_SC 1.04, 1.14, 1.26")
-    load_class: str = spec("operating", "string", choices=LOAD_CLASSES,
+    load_class: str = spec(CODE_DEFAULTS["load_class"], "string", choices=LOAD_CLASSES,
                            doc="API load class: C_f 1.0, 1.2, 1.2, 1.5, 1.35")
-    gamma_f: float = spec(1.1, ge=1.0, le=3.0, doc="DNV load-effect factor on the "
+    gamma_f: float = spec(CODE_DEFAULTS["gamma_f"], ge=1.0, le=3.0, doc="DNV load-effect factor on the "
                                                    "functional (static) part")
-    gamma_e: float = spec(1.3, ge=1.0, le=3.0, doc="DNV load-effect factor on the "
+    gamma_e: float = spec(CODE_DEFAULTS["gamma_e"], ge=1.0, le=3.0, doc="DNV load-effect factor on the "
                                                    "environmental (dynamic) part")
-    gamma_m: float = spec(1.15, ge=1.0, le=3.0, doc="DNV material resistance factor")
-    alpha_u: float = spec(0.96, gt=0.5, le=1.0, doc="DNV material strength factor "
+    gamma_m: float = spec(CODE_DEFAULTS["gamma_m"], ge=1.0, le=3.0, doc="DNV material resistance factor")
+    alpha_u: float = spec(CODE_DEFAULTS["alpha_u"], gt=0.5, le=1.0, doc="DNV material strength factor "
                                                     "(1.0 with supplementary requirement U)")
-    alpha_fab: float = spec(1.0, gt=0.5, le=1.0, doc="DNV fabrication factor of the "
+    alpha_fab: float = spec(CODE_DEFAULTS["alpha_fab"], gt=0.5, le=1.0, doc="DNV fabrication factor of the "
                                                      "collapse check (0.93 UO, 0.85 UOE)")
-    ovality: float = spec(0.005, ge=0.0, le=0.05, doc="DNV initial out-of-roundness f0 "
+    ovality: float = spec(CODE_DEFAULTS["ovality"], ge=0.0, le=0.05, doc="DNV initial out-of-roundness f0 "
                                                       "(collapse)")
-    corrosion_allowance: float = spec(0.0, ge=0.0, le=0.1, unit="m",
+    corrosion_allowance: float = spec(CODE_DEFAULTS["corrosion_allowance"], ge=0.0, le=0.1, unit="m",
                                       doc="DNV t_corr: t2 = wall - t_corr in the "
                                           "resistances")
     internal_pressure: float | None = spec(None, ge=0.0, le=2.0e8, unit="Pa",
@@ -112,6 +136,27 @@ class Design(Part):
                                            doc="design pressure of the contents at the "
                                                "hang-off (gauge)")
     fatigue: Fatigue | None = spec(None, "part", part=Fatigue, table=FATIGUE)
+
+    def __post_init__(self) -> None:
+        check_fields(self)
+        # the code-specific keys given: not their default object (a replace passes it on)
+        object.__setattr__(self, "_given", frozenset(
+            k for k, v in CODE_DEFAULTS.items() if getattr(self, k) is not v))
+
+    def __setstate__(self, state: dict) -> None:
+        """Unpickled (a worker process): the keys not given get their default object back,
+        so that a replace there still tells them from given ones."""
+        for k in CODE_DEFAULTS:
+            if k not in state.get("_given", CODE_DEFAULTS):
+                state[k] = CODE_DEFAULTS[k]
+        self.__dict__.update(state)
+
+    def ignored_keys(self) -> tuple[str, ...]:
+        """The keys given (in the file or the constructor) that only the other code reads
+        (:data:`CODE_KEYS`): ``load_class`` under DNV, DNV's factors under API; a key left
+        out is its default object (:data:`CODE_DEFAULTS`), a given one another."""
+        return tuple(k for code, keys in CODE_KEYS.items() if code != self.code
+                     for k in keys if k in self._given)
 
     def top_pressure(self, scene) -> float:
         """The contents' gauge pressure at the hang-off [Pa]: ``internal_pressure``, else
@@ -148,7 +193,44 @@ def check_design(scene) -> None:
             if value is None or value <= 0.0:
                 raise err(f"line_types.{name}.{key}", f"required by [design] "
                           f"({why[key]})")
-        if design.corrosion_allowance >= 0.5 * (lt.outer_diameter - lt.inner_diameter):
+        wall = 0.5 * (lt.outer_diameter - lt.inner_diameter)
+        # the wall derived from a wall_thickness (D - 2 t) carries the round-off of D:
+        # an allowance equal to the given thickness leaves 1e-17 m of wall (a utilisation
+        # of 1e29), so the comparison allows WALL_ROUND_OFF of D
+        if design.corrosion_allowance >= wall - WALL_ROUND_OFF * lt.outer_diameter:
             raise err("design.corrosion_allowance", f"must be < the wall thickness "
-                      f"{0.5 * (lt.outer_diameter - lt.inner_diameter):g} m of line type "
-                      f"{name!r}, got {design.corrosion_allowance:g}")
+                      f"{wall:.6g} m of line type {name!r} (the corroded wall t - "
+                      f"t_corr carries the checks), got {design.corrosion_allowance:g}")
+    check_fatigue_sea_states(scene)
+
+
+def check_fatigue_sea_states(scene) -> None:
+    """Each cell of the scatter diagram makes a valid sea of the scene's spectrum (a
+    JONSWAP or Pierson-Moskowitz with the cell's hs and tp): refused naming
+    ``design.fatigue.sea_states[i].<key>``, not the spectrum's own key."""
+    fatigue, waves = scene.design.fatigue, scene.waves
+    if fatigue is None or waves is None or waves.spectrum is None \
+            or waves.spectrum.kind == "table":
+        return
+    for i, cell in enumerate(fatigue.sea_states):
+        try:
+            waves.spectrum.replace(hs=cell.hs, tp=cell.tp)
+        except SceneError as exc:
+            own = exc.key in ("hs", "tp")
+            raise scene.error(f"design.fatigue.sea_states[{i}]" + (f".{exc.key}" if own
+                              else ""), ("" if own else f"environment.waves.spectrum."
+                              f"{exc.key}: ") + f"{exc.message} (the scene's spectrum at "
+                              f"this sea state's hs {cell.hs:g} m and tp {cell.tp:g} s)"
+                              ) from None
+
+
+def design_warnings(scene) -> list[str]:
+    """Named ``ignored_input`` warnings for the [design] keys the chosen code does not
+    read (:meth:`Design.ignored_keys`); [] without [design]."""
+    design = scene.design
+    if design is None:
+        return []
+    other = {k: code for code, keys in CODE_KEYS.items() for k in keys}
+    return [f"ignored_input: design.{k} = {getattr(design, k)!r} is a key of "
+            f"{other[k]}'s check; code = {design.code!r} does not use it"
+            for k in design.ignored_keys()]
