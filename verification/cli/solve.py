@@ -81,12 +81,21 @@ def summary_lines(sm: dict, dynamic: bool = False) -> list[str]:
                      f"{sm['max_von_mises'] / 1e6:.1f} MPa"
                      + ("" if sm["design_passes"] else ": FAILS the code check"))
     if sm.get("max_lateral_offset") is not None:        # a 3D scene
+        off = length(sm["max_lateral_offset"], scale=_span(sm))
+        mom = with_unit(sm["max_moment_out_of_plane"], "N m", decimals=3,
+                        scale=sm["max_moment"])
         lines.append(f"  {'static: ' if dynamic else ''}largest lateral excursion "
-                     f"{length(sm['max_lateral_offset'])} m from the plane of the ends at "
+                     f"{off} m from the plane of the ends at "
                      f"s = {length(sm['max_lateral_offset_s'], decimals=1)} m; max "
-                     "out-of-plane moment "
-                     f"{with_unit(sm['max_moment_out_of_plane'], 'N m', decimals=3)}")
+                     f"out-of-plane moment {mom}" + (
+                         " (0: below 1e-9 of the span, of the largest moment: round-off)"
+                         if "0" in (off, mom.split()[0]) else ""))
     return lines
+
+
+def _span(sm: dict) -> float:
+    """The hang-off's larger coordinate [m]: the scale of a lateral offset's round-off."""
+    return max(abs(sm.get("hang_off_x") or 0.0), abs(sm.get("hang_off_height") or 0.0))
 
 
 def add_parsers(sub) -> None:

@@ -11,7 +11,10 @@ tension [N], moment [N m] and displacement [m] amplitudes, the tension phases [d
 max_curvature_per_m [1/m2]: the FD per unit motion), ``transfer_along_s.csv`` (period_s,
 s, tension_per_m, moment_per_m, curvature_per_m: the same along s at 101 stations),
 ``response.png``, ``sweep.png``, ``transfer.png``; the static comparison's files beside
-them (its report the first section of ``report.md``).
+them (its report the first section of ``report.md``). The transfer functions are per unit
+motion of the hang-off along one axis: a wave's or an orbit's comparison has none, and
+its ``transfer*`` files are neither written nor linked (nor when no period of the sweep
+converged).
 """
 
 from __future__ import annotations
@@ -104,14 +107,22 @@ def write(dc: DynamicComparison, out: str | Path, static_markdown: str = "",
     out.mkdir(parents=True, exist_ok=True)
     tables = frames(dc)
     tables["transfer.csv"], tables["transfer_along_s.csv"] = transfer(dc)
+    has_transfer = len(tables["transfer.csv"]) > 0
+    if not has_transfer:    # nothing to write: no empty file, no empty plot, no link
+        del tables["transfer.csv"], tables["transfer_along_s.csv"]
     for name, frame in tables.items():
         frame.to_csv(out / name, index=False, float_format="%.8g")
     _plots(dc, tables, out)
-    (out / "report.md").write_text(markdown(dc, static_markdown, peer_markdown))
+    (out / "report.md").write_text(markdown(dc, static_markdown, peer_markdown,
+                                            transfer_written=has_transfer))
 
 
 def markdown(dc: DynamicComparison, static_markdown: str = "", peer_markdown: str = "",
-             heading: str = "#") -> str:
+             heading: str = "#", transfer_written: bool | None = None) -> str:
+    """report.md; ``transfer_written``: whether the transfer functions' files were
+    written (default: a motion along one axis has them, a wave or an orbit not)."""
+    if transfer_written is None:
+        transfer_written = dc.axis not in (WAVE, ORBIT)
     sc = dc.scene
     verdict = "PASS" if dc.passed else "FAIL"
     lines = [f"{heading} Dynamic response, frequency domain vs VFIFE: `{sc.name}`", "",
@@ -126,7 +137,10 @@ def markdown(dc: DynamicComparison, static_markdown: str = "", peer_markdown: st
                                       if dc.scene.vessel is not None else
                                       "the hang-off fixed") + (
                      "; the line loaded by the wave (Morison drag and inertia)"
-                     if dc.scene.waves.line_loads else "; no wave load on the line") + ".")
+                     if dc.scene.waves.line_loads else "; no wave load on the line") + "; no "
+                 "transfer functions (they are per unit motion of the hang-off along one "
+                 "axis; the response per unit wave amplitude at this period is `response.csv`'s "
+                 "divided by A).")
     elif dc.axis == ORBIT:
         tm = dc.scene.dynamics.top_motion
         drive = (f"- Orbit: d_k(t) = A_k sin(2 pi t / T + phi_k), T = {dc.period:g} s, the "
@@ -186,8 +200,10 @@ def markdown(dc: DynamicComparison, static_markdown: str = "", peer_markdown: st
         "over the cycle, the FD's stays as in the static state.", "",
         f"{heading}# Figures", "", "![response along s](response.png)", "",
         "![differences over the amplitude sweep](sweep.png)", "",
-        "![transfer functions](transfer.png)", "",
-        "Files: " + ", ".join(f"`{f}`" for f in FILES[:5]) + ".", ""]
+        *(["![transfer functions](transfer.png)", ""] if transfer_written else []),
+        "Files: " + ", ".join(f"`{f}`" for f in FILES[:5]
+                              if transfer_written or not f.startswith("transfer")) + ".",
+        ""]
     if peer_markdown:
         lines.append(peer_markdown)
     return "\n".join(lines)
@@ -233,14 +249,15 @@ def _plots(dc: DynamicComparison, tables: dict, out: Path) -> None:
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8)
     save(fig, out / "sweep.png")
-    tr = tables["transfer.csv"]
+    tr = tables.get("transfer.csv")
+    if tr is None or not len(tr):
+        return
     fig, axes = new_figure(2, 1, (8, 7))
-    if len(tr):
-        axes[0, 0].plot(tr["period_s"], tr["hang_off_tension_per_m"] / 1e3, "o-")
-        axes[1, 0].plot(tr["period_s"], tr["max_moment_per_m"] / 1e3, "o-")
-        for ax in axes[:, 0]:
-            ax.axvline(dc.period, color="0.5", ls=":")
-            ax.grid(alpha=0.3)
+    axes[0, 0].plot(tr["period_s"], tr["hang_off_tension_per_m"] / 1e3, "o-")
+    axes[1, 0].plot(tr["period_s"], tr["max_moment_per_m"] / 1e3, "o-")
+    for ax in axes[:, 0]:
+        ax.axvline(dc.period, color="0.5", ls=":")
+        ax.grid(alpha=0.3)
     axes[0, 0].set_ylabel("hang-off tension [kN per m]")
     axes[1, 0].set_ylabel("max moment [kN m per m]")
     axes[1, 0].set_xlabel("period [s]")

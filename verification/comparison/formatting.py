@@ -10,11 +10,10 @@ import math
 import numpy as np
 
 from verification.report.markdown import fmt
-
 #: differences (and values) below this fraction of their basis are printed as 0: the
 #: solvers write their profiles with 10 significant digits, so nothing below ~1e-9 of a
-#: quantity's scale is reproducible from the files.
-ROUND_OFF = 1.0e-9
+#: quantity's scale is reproducible from the files (one floor for the console's units too)
+from verification.report.units import ROUND_OFF
 
 
 def is_zero(value, scale) -> bool:

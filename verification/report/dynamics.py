@@ -18,6 +18,30 @@ from .units import with_unit
 
 #: the figures written beside timeseries.csv and envelope.csv
 FILES = ("timeseries.png", "envelope.png")
+#: on a grounded line the minimum tension's place is drawn only where it is this fraction
+#: of the hang-off tension below the touchdown's tension: a plot resolves ~1e-3 of its
+#: axis, and on the seabed (uniform tension without friction, falling to the anchor with
+#: it) the lowest node is round-off or the anchor, not a station of the response
+BELOW_TOUCHDOWN = 1.0e-4
+#: the label of the minimum tension's place on a grounded line
+SUSPENDED_LABEL = "minimum tension, where in the suspended part (else not drawn)"
+
+
+def suspended_min_tension_s(ts) -> np.ndarray | None:
+    """The time series' ``min_tension_s`` [m] where the minimum lies in the suspended
+    part of a grounded line (above the touchdown, and below the touchdown's tension by
+    :data:`BELOW_TOUCHDOWN` of the hang-off tension), NaN elsewhere; None when the line
+    never touches the seabed (the whole line's minimum is then a station of its own)."""
+    td = np.asarray(ts["touchdown_s"], float)
+    if not np.any(np.isfinite(td)):
+        return None
+    s_min = np.asarray(ts["min_tension_s"], float)
+    t_min = np.asarray(ts["min_tension"], float)
+    t_td = np.asarray(ts["touchdown_tension"], float)
+    margin = BELOW_TOUCHDOWN * np.nanmax(np.abs(np.asarray(ts["hang_off_tension"], float)))
+    with np.errstate(invalid="ignore"):
+        keep = ~np.isfinite(td) | ((s_min > td) & (t_min < t_td - margin))
+    return np.where(keep, s_min, np.nan)
 
 
 def write_plots(dyn: DynamicsResult, out: Path, title: str, start: float) -> None:
@@ -26,6 +50,9 @@ def write_plots(dyn: DynamicsResult, out: Path, title: str, start: float) -> Non
     window's start."""
     ts, env = dyn.timeseries, dyn.envelope
     t = ts["time"]
+    suspended = suspended_min_tension_s(ts)
+    where_min = (("min_tension_s", 1.0, "minimum tension") if suspended is None else
+                 (suspended, 1.0, SUSPENDED_LABEL))
     fig, ax = new_figure(3, 2, size=(11.0, 8.5))
     panels = [
         (ax[0, 0], [("hang_off_tension", 1e-3, "hang-off")], "effective tension [kN]"),
@@ -35,19 +62,21 @@ def write_plots(dyn: DynamicsResult, out: Path, title: str, start: float) -> Non
         (ax[1, 1], [("max_moment", 1e-3, "peak along the line")], "bending moment [kN m]"),
         (ax[2, 0], [("hang_off_x", 1.0, "x"), ("hang_off_y", 1.0, "y"),
                     ("hang_off_z", 1.0, "z")], "hang-off position - start [m]"),
-        (ax[2, 1], [("max_moment_s", 1.0, "peak moment"), ("min_tension_s", 1.0,
-                                                           "minimum tension")],
+        (ax[2, 1], [("max_moment_s", 1.0, "peak moment"), where_min],
          "where along the line, s [m]"),
     ]
     for a, series, label in panels:
         drawn = 0
         for key, f, name in series:
-            v = np.asarray(ts[key], float) * f
-            if key.startswith("hang_off_") and key[-1] in "xyz":
+            v = np.asarray(ts[key] if isinstance(key, str) else key, float) * f
+            if isinstance(key, str) and key.startswith("hang_off_") and key[-1] in "xyz":
                 v = v - v[0]
             if np.any(np.isfinite(v)):
                 a.plot(t, v, label=name, lw=1.0)
                 drawn += 1
+        if key is suspended and suspended is not None and not np.any(np.isfinite(v)):
+            a.text(0.5, 0.05, "minimum tension on the seabed throughout: not drawn",
+                   ha="center", va="bottom", transform=a.transAxes, fontsize=8)
         if not drawn:
             a.text(0.5, 0.5, "no seabed contact", ha="center", va="center",
                    transform=a.transAxes)
@@ -56,7 +85,7 @@ def write_plots(dyn: DynamicsResult, out: Path, title: str, start: float) -> Non
         a.set_xlabel("time t [s]")
         a.set_ylabel(label)
         a.grid(alpha=0.3)
-        if drawn > 1:
+        if drawn > 1 or any(not isinstance(k, str) for k, _, _ in series):
             a.legend(fontsize=8)
     fig.suptitle(f"{title}: time series (dashed: statistics start, {start:g} s)")
     save(fig, out / "timeseries.png")
@@ -90,8 +119,13 @@ def summary_lines(sm: dict) -> list[str]:
              f"{with_unit(sm['dynamic_hang_off_tension_range'], 'N')})",
              f"    max moment {with_unit(sm['dynamic_max_moment'], 'N m')} at s = "
              f"{sm['dynamic_max_moment_s']:.1f} m (t = {sm['dynamic_max_moment_time']:.2f} s)",
-             f"    min tension {with_unit(sm['dynamic_min_tension'], 'N')} at s = "
-             f"{sm['dynamic_min_tension_s']:.1f} m (t = {sm['dynamic_min_tension_time']:.2f} s)"]
+             f"    min tension {with_unit(sm['dynamic_min_tension'], 'N')} "
+             + (f"on the seabed (s = {sm['dynamic_min_tension_s']:.1f} m, at or below the "
+                f"touchdown's {sm['dynamic_max_touchdown_s']:.1f} m)"
+                if sm.get("dynamic_max_touchdown_s") is not None
+                and sm["dynamic_min_tension_s"] <= sm["dynamic_max_touchdown_s"]
+                else f"at s = {sm['dynamic_min_tension_s']:.1f} m")
+             + f" (t = {sm['dynamic_min_tension_time']:.2f} s)"]
     if "dynamic_min_touchdown_s" in sm:
         lines.append(f"    touchdown s from {sm['dynamic_min_touchdown_s']:.1f} to "
                      f"{sm['dynamic_max_touchdown_s']:.1f} m")
