@@ -310,7 +310,8 @@ class Dynamics(Part):
     """
 
     duration: float = spec(gt=0.0, le=1.0e6, unit="s", doc="length of the run")
-    output_interval: float | None = spec(None, gt=0.0, unit="s", also="<= duration",
+    output_interval: float | None = spec(None, gt=0.0, unit="s", also="<= duration; at most "
+                                         f"{MAX_OUTPUT_SAMPLES:,} samples",
                                          default_doc="min(1 s, duration)",
                                          doc="time between outputs")
     top_motion: TopMotion | None = spec(None, "part", part=TopMotion,
@@ -320,8 +321,9 @@ class Dynamics(Part):
     statistics_start: float | None = spec(None, ge=0.0, unit="s", also="< duration",
                                           default_doc="the end of the ramp",
                                           doc="envelopes and statistics from this time on")
-    save_states: bool = spec(False, "boolean", doc="write every node's state at the "
-                                                   "output times (states.npz)")
+    save_states: bool = spec(False, "boolean", also="at most 2 GB of states",
+                             doc="write every node's state at the output times "
+                                 "(states.npz)")
 
     def __post_init__(self) -> None:
         check_fields(self)

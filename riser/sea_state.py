@@ -10,19 +10,11 @@ import numpy as np
 
 from .dynamics import MAX_TOP_ACCELERATION, MAX_TOP_SPEED
 from .hang_off_motion import vessel_amplitudes
-from .vessel import DOFS
+from .vessel import DOFS, MAX_ROTATION_DEG
 from .waves import steepness_error
 
 #: a vessel RAO table covers wave headings up to this far from its own [deg]
 RAO_HEADING_REACH = 90.0
-#: the largest vessel rotation amplitude [deg] the hang-off's path takes. The path is
-#: linear in the rotation, d = u + theta x r (riser/vessel.py): its error, ~|theta|^2 |r|
-#: / 2, is 1.5 % of the lever arm at 10 deg (sin theta departs from theta by 0.5 %), and
-#: grows as theta^2 beyond. Moored vessels rotate less: an FPSO or a semisubmersible
-#: pitches or rolls by ~2-8 deg in a survival storm; a larger amplitude is an RAO in the
-#: wrong unit (rad/m read as deg/m is 57 times too small, the reverse too large), for the
-#: wrong period, or a vessel outside the small-rotation model.
-MAX_ROTATION_DEG = 10.0
 #: an irregular sea's largest motion in standard deviations of its record: 4 (the
 #: significant wave height is 4 sigma, and the waves' crest check takes Hs as the most
 #: probable largest crest of hours); regular trains add their amplitudes (their peak
@@ -134,9 +126,9 @@ def check_vessel_motion(scene) -> None:
         if peak > MAX_ROTATION_DEG:
             j = int(np.argmax(theta))
             raise err(_table_key(vessel, comp, j, DOFS[k]), f"the waves rotate the vessel by "
-                      f"{peak:.4g} deg in {DOFS[k]}{sea_note}, the RAO "
-                      f"{math.degrees(abs(R[k, j])):.4g} deg/m at the period "
-                      f"{periods[j]:.4g} s the largest part: must be <= "
+                      f"{peak:.4g} deg in {DOFS[k]}{sea_note}, most at the period "
+                      f"{periods[j]:.4g} s (RAO {math.degrees(abs(R[k, j])):.4g} deg/m): "
+                      f"must be <= "
                       f"{MAX_ROTATION_DEG:g} deg, the small-rotation vessel model (d = u + "
                       "theta x r; a vessel rolls or pitches by ~2-8 deg in a survival "
                       "storm): check the RAO's unit [deg/m] and periods [s]")

@@ -20,7 +20,8 @@ the period, constant beyond them; between headings linear in the heading (the ta
 periodic over 360 deg; one table: every heading).
 
 Motion of the hang-off: d = u + theta x r (small rotations: |theta| << 1 rad, a
-displacement error of ~|theta|^2 |r| / 2, stated in the docs), u the RAO origin's
+displacement error of ~|theta|^2 |r| / 2, stated in the docs; a scene refuses
+rotations beyond :data:`MAX_ROTATION_DEG`), u the RAO origin's
 translation, theta its rotation vector and r the lever arm ``hang_off_on_vessel`` from
 the RAO origin to the hang-off; the ramp is the waves' (``[environment.waves]
 ramp_time``). The hang-off's direction (a clamped end) is not turned by the vessel's
@@ -34,15 +35,28 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .dynamics import MAX_TOP_ACCELERATION, MAX_TOP_SPEED
 from .spec import Part, check_fields, part_error, spec
 
 #: the degrees of freedom of an RAO table, translations then rotations
 DOFS = ("surge", "sway", "heave", "roll", "pitch", "yaw")
+#: the largest rotation amplitude [deg] of the vessel in a scene's waves (checked by
+#: :func:`riser.sea_state.check_vessel_motion`). The hang-off's path is linear in the
+#: rotation, d = u + theta x r: its error, ~|theta|^2 |r| / 2, is 1.5 % of the lever arm
+#: at 10 deg (sin theta departs from theta by 0.5 %) and grows as theta^2 beyond. Moored
+#: vessels rotate less: an FPSO or a semisubmersible pitches or rolls by ~2-8 deg in a
+#: survival storm; a larger amplitude is an RAO in the wrong unit (deg/m typed for rad/m
+#: is 57 times too large), for the wrong period, or a vessel outside the small-rotation
+#: model.
+MAX_ROTATION_DEG = 10.0
 
 
 def _dof_field(name: str, rotation: bool):
     unit = "deg/m" if rotation else "m/m"
-    return spec(kind="numbers", ge=0.0, le=100.0, unit=unit, also="one per period",
+    also = "one per period; in the waves, " + (
+        f"the rotation <= {MAX_ROTATION_DEG:g} deg" if rotation else
+        f"the hang-off <= {MAX_TOP_SPEED:g} m/s, {MAX_TOP_ACCELERATION:g} m/s2")
+    return spec(kind="numbers", ge=0.0, le=100.0, unit=unit, also=also,
                 doc=f"{name} RAO amplitude per metre of wave amplitude")
 
 

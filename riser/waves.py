@@ -277,6 +277,7 @@ class Waves(Part):
                             doc="wave loads on the line (false: the waves move the vessel "
                                 "only)")
     ramp_time: float | None = spec(None, ge=0.0, le=1.0e4, unit="s",
+                                   also="<= dynamics.duration",
                                    default_doc="two longest periods (a sea: two peak "
                                                "periods)",
                                    doc="half-cosine ramp of the wave loads and motions")

@@ -59,8 +59,9 @@ def refusal(data: dict, tmp_path, capsys, method: str = "vfife") -> str:
     lines = err.strip().splitlines()
     assert len(lines) == 1 and "Traceback" not in err, err
     # refused before solving: building the scene takes well under a second (a solve of
-    # these scenes takes minutes, the 1e-6 s output interval never ended)
-    assert elapsed < 5.0, elapsed
+    # these scenes takes minutes, the 1e-6 s output interval never ended); 10 s leaves
+    # room for a loaded machine
+    assert elapsed < 10.0, elapsed
     return lines[0]
 
 
@@ -101,7 +102,7 @@ def test_issue_pitch_rao_20_times_too_large_is_refused_naming_table_dof_period(
     tab["pitch"] = [20.0 * p for p in tab["pitch"]]
     assert max(tab["pitch"]) == 10.0 and base.vessel is not None
     line = refusal(data, tmp_path, capsys)
-    assert "vessel.raos[0].pitch" in line and "at the period" in line, line
+    assert "vessel.raos[0].pitch" in line and "most at the period" in line, line
     assert f"<= {MAX_ROTATION_DEG:g} deg" in line, line
     quoted = float(line.split("rotate the vessel by ")[1].split(" deg")[0])
     comp = base.waves.components(base.water_depth, base.gravity, (0.0, 0.0))

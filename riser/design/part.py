@@ -129,6 +129,7 @@ class Design(Part):
     ovality: float = spec(CODE_DEFAULTS["ovality"], ge=0.0, le=0.05, doc="DNV initial out-of-roundness f0 "
                                                       "(collapse)")
     corrosion_allowance: float = spec(CODE_DEFAULTS["corrosion_allowance"], ge=0.0, le=0.1, unit="m",
+                                      also="< the wall thickness",
                                       doc="DNV t_corr: t2 = wall - t_corr in the "
                                           "resistances")
     internal_pressure: float | None = spec(None, ge=0.0, le=2.0e8, unit="Pa",
