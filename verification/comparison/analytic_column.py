@@ -17,7 +17,7 @@ from pathlib import Path
 import analytic
 from riser.result import Status
 from verification.pipeline import shifted
-from verification.report.markdown import md_table
+from verification.report.markdown import md_table, timed
 from verification.runtime import outdir
 
 from .agreement import agreement
@@ -50,8 +50,9 @@ class AnalyticColumn:
         i = res.info
         return ColumnResult(
             self, res, profile, verdict_values(comp.rows, rows), rows,
-            note=(f"The analytic method ({i['analytic_model']}, {res.wall_time_s * 1e3:.2f} "
-                  f"ms) solved the same scene: eps = {i['epsilon']:.3g}, delta = "
+            note=(f"The analytic method ({i['analytic_model']}, "
+                  f"{timed(res.wall_time_s, '.2f', ' ms')}) solved the same scene: "
+                  f"eps = {i['epsilon']:.3g}, delta = "
                   f"{i['delta']:.3g}, boundary layer {i['boundary_layer_length']:.3g} m."))
 
     def markdown(self, comp, res: ColumnResult, heading: str = "#") -> list[str]:

@@ -11,7 +11,7 @@ import numpy as np
 from verification.pipeline import shifted
 from verification.quantities import signed_moment
 from verification.report.figures import new_figure, save
-from verification.report.markdown import GENERATED_NOTE, fmt, md_table
+from verification.report.markdown import GENERATED_NOTE, fmt, md_table, timed
 
 from .formatting import ROUND_OFF, num, rel, scale, signed, where
 from .protocol import Comparison, model_text
@@ -92,12 +92,12 @@ def report_markdown(comp: Comparison, heading: str = "#") -> str:
     ]
     lines += [f"- {n}" for n in comp.notes]
     lines += [
-        f"- BVP: {b.message}, {b.info.get('nodes')} nodes, {b.wall_time_s:.2f} s"
+        f"- BVP: {b.message}, {b.info.get('nodes')} nodes, {timed(b.wall_time_s)}"
         + (f", {b.info['formulation']}" if b.profile is not None and b.profile.is_3d
            else "") + ".",
         f"- VFIFE: {v.message}; {v.info.get('elements')} elements of "
         f"{fmt(v.info.get('element_length'), 4)} m, time step "
-        f"{fmt(v.info.get('time_step'), 4)} s, {v.wall_time_s:.2f} s.",
+        f"{fmt(v.info.get('time_step'), 4)} s, {timed(v.wall_time_s)}.",
         f"- Lengths are normalised by {comp.depth:.1f} m "
         f"({'water depth' if sc.water_depth else 'hang-off height; the scene gives no depth'}).",
         "",

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import math
 from typing import Iterable, Sequence
 
@@ -22,6 +23,35 @@ def fmt(value, digits: int = 6) -> str:
     if not math.isfinite(value):
         return ""
     return f"{value:.{digits}g}"
+
+
+#: what a measured time reads as in a committed report (:func:`timed`)
+TIMED = "(timed: reports/timings.json)"
+_stable = {"on": False, "times": []}
+
+
+@contextlib.contextmanager
+def committed_reports():
+    """Within: :func:`timed` keeps measured times out of the text (a committed report
+    must not change from one machine or run to another); yields the list the times
+    [s] go to, in the order written (``reproduce`` puts them in ``timings.json``)."""
+    before = dict(_stable)
+    _stable.update(on=True, times=[])
+    try:
+        yield _stable["times"]
+    finally:
+        _stable.update(before)
+
+
+def timed(seconds: float, spec: str = ".2f", unit: str = " s") -> str:
+    """A measured wall time [s] for a report: ``f"{seconds:{spec}}{unit}"`` (``unit`` " ms":
+    ``seconds`` shown in milliseconds), or :data:`TIMED` inside
+    :func:`committed_reports` (the value kept for ``timings.json``)."""
+    if _stable["on"]:
+        _stable["times"].append(seconds)
+        return TIMED
+    shown = 1e3 * seconds if unit.strip() == "ms" else seconds
+    return f"{shown:{spec}}{unit}"
 
 
 def pct(value, digits: int = 3) -> str:

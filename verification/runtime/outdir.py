@@ -138,18 +138,10 @@ def check_writable(folder: str | Path) -> None:
                 d.rmdir()
 
 
-def clear(folder: str | Path | None, names: tuple[str, ...]) -> list[Path]:
-    """Remove the files ``names`` (paths relative to ``folder``) left by an earlier run, and
-    the subfolders among them that this leaves empty; returns the removed files.
-
-    ``folder`` None (the command's default folder, not known yet): nothing to do. Raises
-    :class:`SceneError` (exit 2, before any solving) when ``folder`` is not a folder (or
-    cannot be one: a file where a folder above it should be), cannot be written
-    (:func:`check_writable`: read-only, or cannot be created) or a stale file cannot be
-    removed, so no old result survives unnoticed and no result is lost at the end.
-    """
-    if folder is None:
-        return []
+def check_folder(folder: str | Path) -> bool:
+    """Raise :class:`SceneError` (exit 2, naming ``--out``) unless ``folder`` is, or can
+    be, a folder that can be written (:func:`check_writable`); True when it exists
+    (nothing is removed: :func:`clear` removes an earlier run's files)."""
     base = Path(folder)
     # a name too long or a loop of links: Path.exists would raise OSError (a file above
     # the folder is said below, with the file named)
@@ -163,11 +155,29 @@ def clear(folder: str | Path | None, names: tuple[str, ...]) -> list[Path]:
             raise SceneError(str(base), "--out", f"cannot be created: {above} is a file, not "
                              "a folder")
         check_writable(base)
-        return []
+        return False
     if not base.is_dir():
         raise SceneError(str(base), "--out", "is a file, not a folder: give a folder for the "
                          "results (it is created if missing)")
     check_writable(base)
+    return True
+
+
+def clear(folder: str | Path | None, names: tuple[str, ...]) -> list[Path]:
+    """Remove the files ``names`` (paths relative to ``folder``) left by an earlier run, and
+    the subfolders among them that this leaves empty; returns the removed files.
+
+    ``folder`` None (the command's default folder, not known yet): nothing to do. Raises
+    :class:`SceneError` (exit 2, before any solving) when ``folder`` is not a folder (or
+    cannot be one: a file where a folder above it should be), cannot be written
+    (:func:`check_writable`: read-only, or cannot be created) or a stale file cannot be
+    removed, so no old result survives unnoticed and no result is lost at the end.
+    """
+    if folder is None:
+        return []
+    base = Path(folder)
+    if not check_folder(base):
+        return []
     removed = []
     subfolders = set()
     for name in names:
@@ -188,6 +198,57 @@ def clear(folder: str | Path | None, names: tuple[str, ...]) -> list[Path]:
         except OSError:
             pass
     return removed
+
+
+def unit_folder(unit: str | None, study_folder: str | Path) -> Path:
+    """The folder one unit of ``reproduce`` writes: ``study_folder/unit`` for the studies
+    with a folder per unit, else ``study_folder``."""
+    return Path(study_folder) / unit if unit is not None else Path(study_folder)
+
+
+def staging_folder(unit: str | None, study_folder: str | Path) -> Path:
+    """The temporary study folder a unit writes into before :func:`swap_in` (beside its
+    report, so that the files move by a rename; ``.gitignore``: ``.partial-*``)."""
+    return Path(study_folder) / f".partial-{unit or 'all'}-{os.getpid()}"
+
+
+def swap_in(staged: str | Path, final: str | Path, names: tuple[str, ...]) -> list[str]:
+    """Replace the report in ``final`` by the one a unit wrote into ``staged`` (only once it
+    succeeded: an interrupted or failed unit never gets here, and its old report stays
+    whole): each staged file moves over its old copy by ``os.replace`` (atomic per file),
+    the files ``names`` of the old report that the new one has not are removed, foreign
+    files are kept; ``staged`` is removed. Returns the files moved (relative paths)."""
+    staged, final = Path(staged), Path(final)
+    final.mkdir(parents=True, exist_ok=True)
+    moved = []
+    for p in sorted(q for q in staged.rglob("*") if q.is_file()):
+        rel = p.relative_to(staged)
+        (final / rel).parent.mkdir(parents=True, exist_ok=True)
+        os.replace(p, final / rel)
+        moved.append(rel.as_posix())
+    clear(final, tuple(n for n in names if n not in set(moved)))
+    discard(staged)
+    return moved
+
+
+def discard(staged: str | Path) -> None:
+    """Remove a staging folder and everything in it (a failed or interrupted unit's)."""
+    staged = Path(staged)
+    if not staged.exists():
+        return
+    for p in sorted(staged.rglob("*"), key=lambda q: -len(q.parts)):
+        with contextlib.suppress(OSError):
+            p.rmdir() if p.is_dir() and not p.is_symlink() else p.unlink()
+    with contextlib.suppress(OSError):
+        staged.rmdir()
+
+
+def discard_stale(study_folder: str | Path, unit: str | None) -> None:
+    """Remove the staging folders an interrupted earlier run of ``unit`` left."""
+    base = Path(study_folder)
+    if base.is_dir():
+        for p in base.glob(f".partial-{unit or 'all'}-*"):
+            discard(p)
 
 
 def clear_unit(study: str, unit: str | None, study_folder: str | Path) -> list[Path]:

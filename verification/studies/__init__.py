@@ -13,6 +13,10 @@ import importlib
 import time
 from pathlib import Path
 
+from verification.runtime import outdir, stable
+from verification.runtime.outdir import STUDY_FILES
+from verification.report.markdown import committed_reports
+
 from .study import Study
 
 #: study name -> its module, in the order ``reproduce all`` lists them
@@ -35,12 +39,35 @@ def units(name: str, full: bool = False) -> list[tuple[str, str | None]]:
 
 
 def run_unit(name: str, unit: str | None, out: str, note: str = "",
-             full: bool = False) -> str:
+             full: bool = False) -> tuple[str, dict]:
     """Run one unit into ``out`` (the study's report directory; ``full``: with the dear
-    parts, ``--full``); returns a line for the log. Top level, with plain arguments, so
-    that worker processes can run it."""
+    parts, ``--full``); returns (a line for the log, its timings: {"wall_s": the unit's
+    wall time [s], "files": {file: the timings taken out of it}}). Top level, with plain
+    arguments, so that worker processes can run it.
+
+    The unit writes into a staging folder beside its report
+    (:func:`~verification.runtime.outdir.staging_folder`); its CSV and JSON files are made
+    machine-independent there (:func:`~verification.runtime.stable.stabilise`: timings out,
+    floats to 6 significant digits; the reports' text says :data:`~verification.report.
+    markdown.TIMED` where it measured a time: :func:`~verification.report.markdown.timed`),
+    and only then do they replace the old report
+    (:func:`~verification.runtime.outdir.swap_in`). A unit that raises, or is
+    interrupted, leaves the old report as it was."""
     t0 = time.perf_counter()
-    line = study(name).run(unit, Path(out), note, full)
+    st = study(name)
+    outdir.discard_stale(out, unit)
+    staging = outdir.staging_folder(unit, out)
+    try:
+        with committed_reports() as report_times:      # no timing in the reports' text
+            line = st.run(unit, staging, note, full)
+        staged = outdir.unit_folder(unit, staging)
+        timings = stable.stabilise(staged) if st.stable else {}
+        outdir.swap_in(staged, outdir.unit_folder(unit, out), STUDY_FILES[name])
+    finally:
+        outdir.discard(staging)
+    wall = time.perf_counter() - t0
+    record = {"wall_s": round(wall, 2), "files": timings,
+              "report_times_s": [round(t, 4) for t in report_times]}
     if isinstance(line, str):
-        return line
-    return f"{name}: wrote {out}/ in {time.perf_counter() - t0:.1f} s"
+        return line.replace(str(staging), str(out)), record
+    return f"{name}: wrote {out}/ in {wall:.1f} s", record

@@ -3,6 +3,7 @@ the study that wrote it (:data:`verification.studies.STUDIES`)."""
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 from verification.report.markdown import GENERATED_NOTE, md_table
@@ -24,5 +25,7 @@ def write_index(reports: Path = Path("reports")) -> Path:
         md_table(["study", "cases", "worst agreement", "verdict"], rows), "",
     ])
     path = reports / "README.md"
-    path.write_text(text)
+    tmp = reports / f".README.md.partial-{os.getpid()}"
+    tmp.write_text(text)
+    os.replace(tmp, path)                 # an interrupted write leaves the old index
     return path

@@ -35,6 +35,9 @@ class Study:
     seconds : measured wall time [s] of each unit in ``reproduce all`` on 2 processes of a
         2-core machine, for the longest-first schedule (a unit not listed counts 15 s).
     full_seconds : the same with ``--full``, for the units it makes longer.
+    stable : its CSV and JSON files are made machine-independent before they replace the
+        old report (:mod:`verification.runtime.stable`: timings out, floats rounded);
+        False for a study whose numbers are its timings (``cost``).
     """
 
     name: str
@@ -43,6 +46,7 @@ class Study:
     index_row: Callable[[Path], tuple[str, str, str] | None]
     seconds: dict = field(default_factory=dict)
     full_seconds: dict = field(default_factory=dict)
+    stable: bool = True
 
     def unit_seconds(self, unit, full: bool = False) -> float:
         """Expected wall time [s] of ``unit`` (``full``: with ``--full``)."""

@@ -1,0 +1,151 @@
+"""Reports that stay put: the files ``reproduce`` commits are the same on any machine.
+
+After a unit has written its files (into its staging folder, :mod:`.outdir`), and before
+they replace the committed ones, :func:`stabilise` rewrites its CSV and JSON files:
+
+- **timings out**: a measured wall time depends on the machine and on what else runs, so
+  it has no place in a committed file. The CSV columns and JSON keys named in
+  :data:`TIMING_NAMES` (seconds of wall time, Numba's compile or cache-load time) are
+  taken out and returned, to be written to ``reports/timings.json``, which is not
+  committed (``.gitignore``; :func:`verification.studies.reproduce.write_timings`);
+- **round-off out**: every other float is written to :data:`SIGNIFICANT` (6)
+  significant digits, and a value below :data:`NOISE` (1e-12) of the largest magnitude
+  of its CSV column, or of the numbers of its JSON object, is written as 0: the noise of
+  a zero (an anchor moment of 2e-12 N m in a record whose tension is 8e5 N), which
+  differs entirely from one CPU to another. A double's round-off is 1e-16 of the
+  largest term of a sum; 1e-12 leaves 4 orders for the amplification of the solvers'
+  arithmetic, and is 7 orders below the tightest tolerance. Why 6 (docs/reading-a-report.md, "Digits"): the
+  tightest tolerance the reports judge against is 1e-5 of a value (the VFIFE's tension
+  tolerance; the protocol's are 1e-3 and more), so 6 digits keep every verdict's number
+  to a tenth of its tolerance and better; the round-off of another CPU (BLAS, fused
+  multiply-adds) moves a solve's results by ~1e-8 relative (measured: 1e-8 in the issue's
+  451 rewritten files, 3e-9 between Numba's cold and warm code), 100 times below the
+  6th digit's half-unit, so a number moves only in the rare case that it lies within 1e-8
+  of a rounding boundary (~1 in 100 numbers of the 6th digit's last unit: then that one
+  digit moves).
+
+Text (Markdown) and figures are the studies' own: they print their numbers at the digits
+their tolerances justify (:mod:`verification.report.markdown`).
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+from pathlib import Path
+
+#: significant digits of a float in a committed CSV or JSON file (module docstring)
+SIGNIFICANT = 6
+#: a value below this fraction of the largest magnitude of its CSV column (of the numbers
+#: of its JSON object) is written as 0
+NOISE = 1e-12
+#: CSV columns and JSON keys holding a measured time [s] (wall or compile time): moved to
+#: the report's ``timings.json``. Names only: ``_s`` alone also ends arc lengths (``tdp_s``)
+#: and periods (``period_s``), which stay.
+TIMING_NAMES = frozenset({
+    "wall_time_s", "wall_s", "compile_s", "compile_time_s", "cache_load_s", "newton_s",
+    "fd_s", "vfife_s", "bvp_s", "bvp_seconds", "fd_wall_s", "vfife_wall_s",
+    "static_wall_s", "total_wall_s", "dynamic_wall_s"})
+
+
+def round_float(value: float, digits: int = SIGNIFICANT) -> float:
+    """``value`` rounded to ``digits`` significant digits (non-finite values as given)."""
+    if not math.isfinite(value) or value == 0.0:
+        return value
+    return float(f"{value:.{digits}g}")
+
+
+def _number(text: str) -> float | None:
+    """The float a CSV cell holds, None for text, blanks, integers and booleans (an
+    integer is exact: step and node counts stay as written)."""
+    t = text.strip()
+    if not t or not any(c in t for c in ".eEn") or t.lower() in ("true", "false"):
+        return None
+    try:
+        return float(t)
+    except ValueError:
+        return None
+
+
+def _cell(value: float, scale: float) -> str:
+    if not math.isfinite(value):
+        return "" if math.isnan(value) else ("inf" if value > 0 else "-inf")
+    if abs(value) < NOISE * scale:
+        return "0"
+    return f"{round_float(value):.{SIGNIFICANT}g}"
+
+
+def stable_csv(text: str) -> tuple[str, dict]:
+    """(the CSV ``text`` with its timing columns out and its floats rounded, {column:
+    [values]} of the timing columns taken out)."""
+    rows = list(csv.reader(io.StringIO(text)))
+    if not rows:
+        return text, {}
+    header, body = rows[0], rows[1:]
+    timed = [j for j, name in enumerate(header) if name in TIMING_NAMES]
+    timings = {header[j]: [_number(r[j]) if j < len(r) else None for r in body]
+               for j in timed}
+    keep = [j for j in range(len(header)) if j not in timed]
+    scale = {}
+    for j in keep:
+        vals = [abs(v) for r in body if j < len(r)
+                for v in [_number(r[j])] if v is not None and math.isfinite(v)]
+        scale[j] = max(vals, default=0.0)
+    out = io.StringIO()
+    w = csv.writer(out, lineterminator="\n")
+    w.writerow([header[j] for j in keep])
+    for r in body:
+        cells = []
+        for j in keep:
+            c = r[j] if j < len(r) else ""
+            v = _number(c)
+            cells.append(c if v is None else _cell(v, scale[j]))
+        w.writerow(cells)
+    return out.getvalue(), timings
+
+
+def _stable_json(value, timings: dict, path: str):
+    if isinstance(value, dict):
+        scale = max((abs(v) for k, v in value.items() if k not in TIMING_NAMES
+                     and isinstance(v, float) and math.isfinite(v)), default=0.0)
+        out = {}
+        for k, v in value.items():
+            here = f"{path}.{k}" if path else str(k)
+            if k in TIMING_NAMES and (v is None or isinstance(v, (int, float))):
+                timings[here] = v
+            elif isinstance(v, float) and math.isfinite(v) and abs(v) < NOISE * scale:
+                out[k] = 0.0
+            else:
+                out[k] = _stable_json(v, timings, here)
+        return out
+    if isinstance(value, list):
+        return [_stable_json(v, timings, f"{path}[{i}]") for i, v in enumerate(value)]
+    if isinstance(value, float):
+        return round_float(value)
+    return value
+
+
+def stable_json(text: str) -> tuple[str, dict]:
+    """(the JSON ``text`` with its timing keys out and its floats rounded, {key path:
+    seconds} of the timings taken out)."""
+    timings: dict = {}
+    data = _stable_json(json.loads(text), timings, "")
+    return json.dumps(data, indent=2) + "\n", timings
+
+
+def stabilise(folder: Path) -> dict:
+    """Rewrite every CSV and JSON file under ``folder`` (:func:`stable_csv`,
+    :func:`stable_json`); returns {file relative to ``folder``:
+    its timings} for the files that held any."""
+    found = {}
+    for p in sorted(folder.rglob("*")):
+        if not p.is_file() or p.suffix not in (".csv", ".json"):
+            continue
+        fix = stable_csv if p.suffix == ".csv" else stable_json
+        text, timings = fix(p.read_text())
+        p.write_text(text)
+        if timings:
+            found[p.relative_to(folder).as_posix()] = timings
+    return found
