@@ -29,6 +29,10 @@ MODULUS = (1.0e6, 1.0e13)
 #: and Pa typed as kPa both fall outside)
 MATERIAL_STRENGTH = (1.0e7, 5.0e9)
 
+#: the largest minimum bend radius [m] (a flexible's MBR is metres; 1 km typed as mm
+#: falls outside)
+MAX_BEND_RADIUS = 1000.0
+
 BORE = "wall_thickness or inner_diameter"
 
 
@@ -85,10 +89,17 @@ class LineType(Part):
     yield_strength: float | None = spec(None, gt=MATERIAL_STRENGTH[0],
                                         le=MATERIAL_STRENGTH[1], unit="Pa",
                                         also="<= tensile_strength",
-                                        doc="SMYS of the wall: [design] checks")
+                                        doc="SMYS of the wall: [design] checks, the "
+                                            "bending_strain warning")
     tensile_strength: float | None = spec(None, gt=MATERIAL_STRENGTH[0],
                                           le=MATERIAL_STRENGTH[1], unit="Pa",
                                           doc="SMTS of the wall: DNV's check")
+    minimum_bend_radius: float | None = spec(None, gt=0.0, le=MAX_BEND_RADIUS, unit="m",
+                                             default_doc="not set (steel: SMYS / E)",
+                                             doc="the least bend radius of a flexible "
+                                                 "pipe or cable (its datasheet's MBR): a "
+                                                 "result bent tighter carries a bend_radius "
+                                                 "warning")
 
     def __post_init__(self) -> None:
         check_fields(self)

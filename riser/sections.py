@@ -91,3 +91,73 @@ def segment_properties(scene: Scene) -> list[SegmentProperties]:
         ))
         s0 += seg.length
     return out
+
+
+#: Young's modulus [Pa] and wall density [kg/m3] ranges in which a line type with a bore
+#: is recognised as steel without a ``yield_strength`` (carbon and low-alloy steels: E
+#: 190-215 GPa, density 7,750-7,900; titanium, 110 GPa and 4,500, and aluminium, 70 GPa and
+#: 2,700, fall outside)
+STEEL_MODULUS = (1.9e11, 2.2e11)
+STEEL_DENSITY = (7.6e3, 8.1e3)
+#: the SMYS [Pa] assumed for steel recognised without ``yield_strength``: API 5L X65
+#: (448 MPa), the usual grade of steel risers; a line type's yield_strength replaces it
+DEFAULT_STEEL_SMYS = 4.48e8
+#: E [Pa] assumed for a line type with ``yield_strength`` but no bore to derive E from EI
+STEEL_YOUNGS_MODULUS = 2.07e11
+
+
+@dataclass(frozen=True)
+class BendingLimit:
+    """How far a line type may bend: ``strain`` the elastic limit of the bending strain
+    (OD/2) kappa [-] of a steel wall, SMYS / E (None: not steel), with the ``E`` [Pa] and
+    ``smys`` [Pa] used and ``basis``, a phrase saying where they come from; ``radius`` the
+    ``minimum_bend_radius`` [m] (None: not set)."""
+
+    strain: float | None
+    E: float | None
+    smys: float | None
+    basis: str
+    radius: float | None
+
+    def strain_radius(self, outer_diameter: float) -> float | None:
+        """The bend radius [m] at which the wall reaches the elastic limit, (OD/2) / strain."""
+        return None if self.strain is None else 0.5 * outer_diameter / self.strain
+
+
+def wall_modulus(lt) -> float | None:
+    """Young's modulus [Pa] of a line type's wall derived from its section, EI / I with I =
+    pi (D^4 - d^4) / 64 (None without a bore: the wall is unknown)."""
+    d = lt.inner_diameter
+    if d is None:
+        return None
+    D = lt.outer_diameter
+    return lt.bending_stiffness / (math.pi * (D ** 4 - d ** 4) / 64.0)
+
+
+def bending_limit(lt) -> BendingLimit:
+    """The bending limits of line type ``lt`` (see :class:`BendingLimit`). Steel is a line
+    type with ``yield_strength`` (E from EI and the wall, else
+    :data:`STEEL_YOUNGS_MODULUS` assumed) or a bore whose wall has E and density in
+    :data:`STEEL_MODULUS` and :data:`STEEL_DENSITY` (then SMYS :data:`DEFAULT_STEEL_SMYS`
+    assumed)."""
+    E = wall_modulus(lt)
+    fy = lt.yield_strength
+    radius = lt.minimum_bend_radius
+    if fy is not None:
+        if E is None:
+            return BendingLimit(fy / STEEL_YOUNGS_MODULUS, STEEL_YOUNGS_MODULUS, fy,
+                                f"yield_strength {fy / 1e6:.4g} MPa, E "
+                                f"{STEEL_YOUNGS_MODULUS / 1e9:g} GPa assumed (no bore)",
+                                radius)
+        return BendingLimit(fy / E, E, fy, f"yield_strength {fy / 1e6:.4g} MPa, E "
+                            f"{E / 1e9:.4g} GPa from EI and the wall", radius)
+    if E is not None and STEEL_MODULUS[0] <= E <= STEEL_MODULUS[1]:
+        D, d = lt.outer_diameter, lt.inner_diameter
+        rho = lt.mass_per_length / (math.pi * (D * D - d * d) / 4.0)
+        if STEEL_DENSITY[0] <= rho <= STEEL_DENSITY[1]:
+            return BendingLimit(DEFAULT_STEEL_SMYS / E, E, DEFAULT_STEEL_SMYS,
+                                f"steel recognised (E {E / 1e9:.4g} GPa from EI and the "
+                                f"wall, density {rho:.4g} kg/m3): SMYS "
+                                f"{DEFAULT_STEEL_SMYS / 1e6:g} MPa (API 5L X65) assumed, "
+                                "set yield_strength", radius)
+    return BendingLimit(None, E, None, "", radius)

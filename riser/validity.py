@@ -33,10 +33,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from .design.part import design_warnings
 from .errors import SceneError
 from .profile import Profile
 from .scene import Scene, TopTensionEnds
-from .sections import segment_properties
+from .sections import bending_limit, segment_properties
 
 #: the fewest elements a VFIFE line and each of its segments may have: fewer cannot carry
 #: the catenary shape (a 2,800 m SCR in 900 m elements put its touchdown at x = 0) nor a
@@ -153,12 +154,15 @@ def _where(s: float) -> str:
 
 def line_warnings(scene: Scene, s: np.ndarray, y_min: np.ndarray, y_max: np.ndarray,
                   t_min: np.ndarray, t_max: np.ndarray, lengths=None,
-                  when: str = "", surface: bool = False) -> list[str]:
+                  when: str = "", surface: bool = False,
+                  still_water: bool = True) -> list[str]:
     """Named warnings for a line whose stations at arc lengths ``s`` [m] reach heights
     ``y_min``..``y_max`` [m] and effective tensions ``t_min``..``t_max`` [N] (one state:
     equal pairs; a dynamic run: the extremes over time). ``when``: e.g. ' during the
     dynamics'. ``surface``: the run modelled the sea surface (the VFIFE dynamics), so
-    leaving the water is a statement, not a model violation."""
+    leaving the water is a statement, not a model violation. ``still_water`` False: no
+    above_surface check against the still water level (a dynamic run's envelope checks
+    the instantaneous surface, :func:`dynamic_warnings`)."""
     out = []
     seg = _segment_index(scene, s, lengths)
     lts = [scene.line_types[g.line_type] for g in scene.segments]
@@ -173,7 +177,7 @@ def line_warnings(scene: Scene, s: np.ndarray, y_min: np.ndarray, y_max: np.ndar
                        f"beyond the {100 * lim[j]:g} % of line type "
                        f"{lts[seg[j]].name!r} (max_strain; a linear EA is a small-strain "
                        "model): check the line length, the ends and axial_stiffness")
-    if scene.water_depth is not None:
+    if scene.water_depth is not None and still_water:
         j = int(np.argmax(y_max))
         if y_max[j] > scene.water_depth * (1.0 + 1e-9):
             wet = np.sum(y_max > scene.water_depth * (1.0 + 1e-9))
@@ -209,9 +213,121 @@ def line_warnings(scene: Scene, s: np.ndarray, y_min: np.ndarray, y_max: np.ndar
 
 
 def profile_warnings(scene: Scene, profile: Profile, lengths=None) -> list[str]:
-    """Named warnings for a static profile (see :func:`line_warnings`)."""
+    """Named warnings for a static profile (see :func:`line_warnings`,
+    :func:`bending_warnings` on its curvature), and the
+    ``ignored_input`` of [design] keys the chosen code does not read."""
     return line_warnings(scene, profile.s, profile.y, profile.y, profile.tension,
-                         profile.tension, lengths)
+                         profile.tension, lengths) + bending_warnings(
+        scene, profile.s, profile.curvature, lengths) + design_warnings(scene)
+
+
+def _at_time(times, j: int) -> str:
+    """' at t = 12.5 s' from per-station times [s] (None: a static state, no time)."""
+    if times is None or not np.isfinite(times[j]):
+        return ""
+    return f" at t = {float(times[j]):.4g} s"
+
+
+def bending_warnings(scene: Scene, s: np.ndarray, curvature: np.ndarray, lengths=None,
+                     when: str = "", times=None) -> list[str]:
+    """Named warnings for a line bent at stations ``s`` [m] to curvatures ``curvature``
+    [1/m] (a static profile's, or a dynamic run's largest over time, reached at
+    ``times`` [s]) beyond its line types' :func:`riser.sections.bending_limit`:
+
+    - ``bending_strain``: the wall's bending strain (OD/2) kappa beyond the elastic limit
+      SMYS / E of a steel line type (the worst station relative to its limit);
+    - ``bend_radius``: the bend radius 1/kappa below a line type's
+      ``minimum_bend_radius``.
+    """
+    out = []
+    k = np.abs(np.asarray(curvature, float))
+    if k.size == 0 or not np.all(np.isfinite(k)):
+        return out
+    seg = _segment_index(scene, s, lengths)
+    lts = [scene.line_types[g.line_type] for g in scene.segments]
+    limits = [bending_limit(lt) for lt in lts]
+    D = np.array([lts[i].outer_diameter for i in seg])
+    elastic = np.array([np.inf if limits[i].strain is None else limits[i].strain
+                        for i in seg])
+    strain = 0.5 * D * k
+    ratio = strain / elastic
+    j = int(np.argmax(ratio))
+    if ratio[j] > 1.0:
+        lim = limits[seg[j]]
+        out.append(f"bending_strain: (OD/2)/R = {100 * strain[j]:.3g} % (bend radius "
+                   f"{1.0 / k[j]:.4g} m) {_where(s[j])}{_at_time(times, j)}{when}, beyond the "
+                   f"elastic limit SMYS/E = {100 * elastic[j]:.3g} % (bend radius "
+                   f"{lim.strain_radius(D[j]):.4g} m) of line type {lts[seg[j]].name!r} "
+                   f"({lim.basis}): check the end angles (direction_deg is in degrees), "
+                   "the ends and the loads")
+    mbr = np.array([0.0 if limits[i].radius is None else limits[i].radius for i in seg])
+    ratio = mbr * k
+    j = int(np.argmax(ratio))
+    if ratio[j] > 1.0:
+        out.append(f"bend_radius: {1.0 / k[j]:.4g} m {_where(s[j])}{_at_time(times, j)}"
+                   f"{when}, below the minimum_bend_radius {mbr[j]:g} m of line type "
+                   f"{lts[seg[j]].name!r}")
+    return out
+
+
+def dynamic_warnings(scene: Scene, envelope: dict) -> list[str]:
+    """Named warnings over a dynamic run's envelope (columns along s, the extremes over
+    the statistics window; see :mod:`riser.result`): those of :func:`line_warnings` on
+    the heights and tensions, :func:`bending_warnings` on ``curvature_max`` (when:
+    ``curvature_max_time``), and
+
+    - ``dynamic_compression``: effective compression in a line type that can carry it
+      (``compression`` warns for those that cannot) beyond :data:`COMPRESSION_NOISE` of
+      the largest tension: the least ``tension_min`` [N], where and when
+      (``tension_min_time``): a slender line buckles, and a line that goes slack snaps;
+    - ``above_surface``: with the ``submergence_min`` column (the least depth [m] of the
+      line's axis below the instantaneous sea surface), a station whose axis comes within
+      its outer radius of the surface (its wall breaks the surface: leaves the water),
+      where and when (``submergence_min_time``), the hang-off named; without it, the
+      height above the still water level of :func:`line_warnings`.
+
+    The times are those of the run's own sampling (the envelope interval)."""
+    when = " during the dynamics"
+    e = envelope
+    s = np.asarray(e["s"], float)
+    t_min, t_max = np.asarray(e["tension_min"], float), np.asarray(e["tension_max"], float)
+    sub = e.get("submergence_min")
+    out = line_warnings(scene, s, e["y_min"], e["y_max"], t_min, t_max, when=when,
+                        surface=True, still_water=sub is None)
+    seg = _segment_index(scene, s)
+    lts = [scene.line_types[g.line_type] for g in scene.segments]
+    scale = max(float(np.max(np.abs(t_max))), float(np.max(np.abs(t_min))), 1.0)
+    strong = np.array([lts[i].compression for i in seg])
+    tw = np.where(strong, t_min, np.inf)
+    j = int(np.argmin(tw))
+    if tw[j] < -COMPRESSION_NOISE * scale:
+        out.append(f"dynamic_compression: effective tension {tw[j] / 1e3:.4g} kN "
+                   f"{_where(s[j])}{_at_time(e.get('tension_min_time'), j)}{when} "
+                   f"(line type {lts[seg[j]].name!r}; the hang-off's least "
+                   f"{t_min[-1] / 1e3:.4g} kN): a slender line buckles, a slack one "
+                   "snaps; check the motion, the waves and the top tension")
+    if sub is not None and scene.water_depth is not None:
+        sub = np.asarray(sub, float)
+        radius = 0.5 * np.array([lts[i].outer_diameter for i in seg])
+        out_of_water = sub < radius
+        if np.any(out_of_water):
+            j = int(np.argmin(sub - radius))
+            def depth(i: int) -> str:
+                return (f"{sub[i] + 0.0:.3g} m below" if sub[i] >= 0.0 else
+                        f"{-sub[i]:.3g} m above")
+            top = (f"; the hang-off's axis {depth(-1)} it"
+                   f"{_at_time(e.get('submergence_min_time'), len(s) - 1)}"
+                   if j != len(s) - 1 else " (the hang-off)")
+            out.append(f"above_surface: the line's axis comes {depth(j)} the instantaneous "
+                       f"sea surface {_where(s[j])}"
+                       f"{_at_time(e.get('submergence_min_time'), j)}{when}{top}, within "
+                       f"its outer radius {radius[j]:.4g} m: {int(np.sum(out_of_water))} "
+                       "station(s) leave the water (modelled: in air a node carries its "
+                       "weight in air, with no buoyancy, drag or added mass)")
+    if "curvature_max" in e:
+        out.extend(bending_warnings(scene, s, e["curvature_max"], when=when,
+                                    times=e.get("curvature_max_time")))
+    return out
 
 
 def first_segment_warnings(scene: Scene, solved: float) -> tuple[str, list[str]]:

@@ -15,7 +15,11 @@ Time series (one row per output time; SI units, s from the bottom end):
     line, negative = compression, and where); max_moment [N m], max_moment_s [m];
     kinetic_energy [J] (translations and rotations).
 Envelopes (one row per node): s [m], tension_min, tension_max [N], moment_max [N m],
-curvature_max [1/m], y_min, y_max [m] (height extremes: seabed and surface clearance).
+curvature_max [1/m], y_min, y_max [m] (height extremes: seabed and surface clearance),
+submergence_min [m] (the least depth of the node below the instantaneous sea surface,
+negative above it; empty without water_depth), and the times [s] the window first reached
+tension_min, curvature_max and submergence_min (tension_min_time, curvature_max_time,
+submergence_min_time: the "when" of riser.validity.dynamic_warnings).
 States (``[dynamics] save_states``): t (k,), s (n,), x (k, n, 3) [m], v (k, n, 3) [m/s],
 tension (k, n) [N] (effective) and moment (k, n) [N m] at the nodes, and moment_vector
 (k, n, 3) [N m] (the nodal moment's global x, y, z components, -EI t x t': minus the
@@ -35,7 +39,9 @@ ARC_LENGTH_COLUMNS = ("touchdown_s", "min_tension_s", "max_moment_s")
 ARC_LENGTH_KEYS = ("dynamic_min_touchdown_s", "dynamic_max_touchdown_s",
                    "dynamic_min_tension_s", "dynamic_max_moment_s", "dynamic_max_tension_s")
 ENVELOPE = ("s", "tension_min", "tension_max", "moment_max", "curvature_max", "y_min",
-            "y_max", "tension_mean", "tension_std", "curvature_mean", "curvature_std")
+            "y_max", "submergence_min", "tension_min_time", "curvature_max_time",
+            "submergence_min_time", "tension_mean", "tension_std", "curvature_mean",
+            "curvature_std")
 
 
 def touchdown_s(s: np.ndarray, y: np.ndarray, has_seabed: bool) -> float | None:
@@ -57,6 +63,13 @@ def touchdown_s(s: np.ndarray, y: np.ndarray, has_seabed: bool) -> float | None:
     if i + 1 < len(s) and y[i + 1] > y[i]:
         return float(s[i] + (0.0 - y[i]) / (y[i + 1] - y[i]) * (s[i + 1] - s[i]))
     return float(s[i])
+
+
+def _surface(model) -> np.ndarray:
+    """The sea surface's height [m] over every node of ``model`` as the run has it: the
+    waves' depth + eta at the node (evaluated at the sample's time), else the still water
+    level, inf without a surface (no water_depth)."""
+    return model.waves.WT[6] if model.use_waves else model.ysurf
 
 
 class Recorder:
@@ -84,7 +97,11 @@ class Recorder:
         self.sums = {k: np.zeros(n) for k in ("T", "T2", "K", "K2")}
         self.env = {"tension_min": np.full(n, np.inf), "tension_max": np.full(n, -np.inf),
                     "moment_max": np.full(n, -np.inf), "curvature_max": np.full(n, -np.inf),
-                    "y_min": np.full(n, np.inf), "y_max": np.full(n, -np.inf)}
+                    "y_min": np.full(n, np.inf), "y_max": np.full(n, -np.inf),
+                    "submergence_min": np.full(n, np.inf),
+                    "tension_min_time": np.full(n, np.nan),
+                    "curvature_max_time": np.full(n, np.nan),
+                    "submergence_min_time": np.full(n, np.nan)}
         self.states = {"t": [], "x": [], "v": [], "tension": [], "moment": [],
                        "moment_vector": []}
         self.stats: dict = {}
@@ -110,6 +127,13 @@ class Recorder:
             row["wave_elevation"] = self.elevation(t)
         window = t >= self.start - 1e-9
         if window:
+            sub = _surface(model) - y
+            e = self.env
+            for key, later in (("tension_min", T < e["tension_min"]),
+                               ("curvature_max", K > e["curvature_max"]),
+                               ("submergence_min", sub < e["submergence_min"])):
+                e[key + "_time"][later] = t      # the first time the extreme is reached
+            np.minimum(e["submergence_min"], sub, out=e["submergence_min"])
             self._window(row, T, M, K, y)
         if self.design is not None:
             # the line's bending moment EI t x t' is minus the nodal moment vector
@@ -166,6 +190,8 @@ class Recorder:
         tension [N] and curvature [1/m] (``tension_mean``, ``tension_std``,
         ``curvature_mean``, ``curvature_std``; population statistics of the samples)."""
         out = {"s": self.s.copy(), **{k: v.copy() for k, v in self.env.items()}}
+        sub = out["submergence_min"]
+        sub[~np.isfinite(sub)] = np.nan             # no surface: an empty column
         n = max(self.samples, 1)
         for q, key in (("T", "tension"), ("K", "curvature")):
             mean = self.sums[q] / n

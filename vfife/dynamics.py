@@ -197,6 +197,8 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None, *,
 
     t0 = time.perf_counter()
     j0 = 0 if resume is None else resume.j
+    if model.use_waves:       # the kinematics of the first interval (then at each sample)
+        model.waves.evaluate(model.X, j0 * env_dt)
     rec.sample(j0 * env_dt, model, 0.0 if resume is None else resume.ke, j0 % per_out == 0)
     status, message = DynamicsOutcome.OK, "dynamics completed"
     e0 = None if resume is None else resume.e0
@@ -204,8 +206,6 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None, *,
     for j in range(j0, n_env):
         tj = np.linspace(j * env_dt, (j + 1) * env_dt, nsub + 1)
         disp = path(tj)
-        if model.use_waves:
-            model.waves.evaluate(model.X, j * env_dt)
         k, res, mres, ke, st = model.run(nsub, dt, dyn.damping, top_disp=disp, top0=top0)
         t = (j + 1) * env_dt
         if st == 2 or not np.all(np.isfinite(model.X)):
@@ -221,6 +221,10 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None, *,
             message = (f"dynamics diverged (blow-up, energy growth) at t = {t:.4g} s (kinetic "
                        f"energy {ke:.3g} J); likely cause: " + blow_up_cause(cause))
             break
+        if model.use_waves:
+            # the next interval's Taylor point, evaluated here so that the recorder sees
+            # the surface at the sample's time (the same calls as at each interval's start)
+            model.waves.evaluate(model.X, t)
         rec.sample(t, model, ke, (j + 1) % per_out == 0)
         if (checkpoint_at is not None and checkpoint is None
                 and t >= checkpoint_at - 0.5 * env_dt):

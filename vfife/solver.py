@@ -276,9 +276,7 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
         return result(Status.DIVERGED, dinfo["message"], solver_state=model)
     message += f"; {dinfo['message']} ({dinfo['steps']} steps of {dinfo['time_step']:.3g} s)"
     ts, env, states = dinfo["timeseries"], dinfo["envelope"], dinfo["states"]
-    warnings.extend(validity.line_warnings(scene, env["s"], env["y_min"], env["y_max"],
-                                           env["tension_min"], env["tension_max"],
-                                           when=" during the dynamics", surface=True))
+    warnings.extend(validity.dynamic_warnings(scene, env))
     info.update(dinfo["statistics"])
     if states is not None:
         info["states_file"] = ("states.npz (t (k,), s (n,), x (k, n, 3), v (k, n, 3), "
