@@ -192,18 +192,6 @@ def test_wave_ramp_longer_than_the_run_is_refused(tmp_path, capsys):
     assert f"{expected:.2g} %" in line, line
 
 
-def test_waves_default_ramp_not_shorter_than_the_run_is_refused():
-    """Without ramp_time the ramp is two of the longest periods (2 x 10 s here): a 20 s
-    run never leaves it (refused naming dynamics.duration), a 21 s run does."""
-    data = vessel_scene(train=(0.5, 10.0), heave=1.0)
-    data["dynamics"] = {"duration": 21.0}
-    scene_from_dict(copy.deepcopy(data))
-    data["dynamics"] = {"duration": 20.0}
-    with pytest.raises(SceneError) as exc:
-        scene_from_dict(data)
-    assert exc.value.key == "dynamics.duration" and "must be > 20 s" in exc.value.message
-
-
 # ------------------------------------------------------------------ 5. ignored design keys
 def _design(**keys) -> dict:
     data = load("design/scr-steel-design.toml")
