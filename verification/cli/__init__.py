@@ -26,7 +26,7 @@ try:                             # Ctrl-C while the program loads (numpy): one l
 
     from riser.errors import SceneError, SolveFailed, UnsupportedSceneError
     from verification import peers
-    from verification.runtime.interrupts import exit_quietly_on_interrupt
+    from verification.runtime.interrupts import exit_quietly_on_interrupt, reraise_interrupt
 
     from . import bench, compare, design, solve, studies, sweep
     from .common import QUIET_HELP, Parser, err
@@ -85,5 +85,6 @@ def _run(argv: list[str] | None) -> int:
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())   # no flush error
         return 141                 # 128 + SIGPIPE, as a shell pipeline reports it
     except Exception as exc:       # noqa: BLE001 - one line, never a traceback
+        reraise_interrupt(exc)     # Ctrl-C inside a Numba function (a SystemError): 130
         err(f"unexpected {type(exc).__name__}: {exc} (please report it with the command)")
         return 1

@@ -30,7 +30,8 @@ import os
 import uuid
 from dataclasses import dataclass, field
 
-from .interrupts import held_interrupts, sigint_blocked, worker_ignores_sigint
+from .interrupts import (held_interrupts, reraise_interrupt, sigint_blocked,
+                         worker_ignores_sigint)
 from .scheduler_probe import PROBE_TIMEOUT_S, ProbeFailed, probe
 
 #: environment of local worker processes, unless already set: one BLAS thread each (the
@@ -128,6 +129,16 @@ def _stop(pool) -> None:
     if writer is not None:
         with contextlib.suppress(OSError):
             writer.close()
+    # The manager thread, ending, closes its wake-up pipe; the interpreter's exit wakes
+    # every executor's manager thread through that pipe (concurrent.futures.process.
+    # _python_exit, in threading._shutdown) after checking it is open, without the lock
+    # the closing takes: a thread still ending then made the exit print "Exception
+    # ignored in: <module 'threading'> ... OSError: [Errno 9] Bad file descriptor" after
+    # the interrupt's line (2 of 19 Ctrl-C of a sweep). It is joined here (bounded),
+    # so that it has closed the pipe before the exit looks at it.
+    manager = getattr(pool, "_executor_manager_thread", None)
+    if manager is not None:
+        manager.join(STOP_TIMEOUT_S)
 
 
 @dataclass
@@ -213,6 +224,7 @@ class Engine:
                     else:
                         out = fn(*a)
                 except Exception as exc:           # the unit fails, not the run
+                    reraise_interrupt(exc)         # unless it was a Ctrl-C (in Numba)
                     out = exc
                 yield i, out
         else:

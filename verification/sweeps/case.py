@@ -33,6 +33,7 @@ import numpy as np
 
 from riser.errors import SceneError, SolveFailed
 from riser.profile import OPTIONAL_COLUMNS, Profile, summarize, write_json
+from verification.runtime.interrupts import reraise_interrupt
 
 #: the scalar summary quantities kept per method (riser.profile.summarize's names)
 SUMMARY_KEYS = ("hang_off_tension", "hang_off_angle_deg", "max_tension", "max_tension_s",
@@ -126,6 +127,7 @@ def run_case(spec: dict) -> dict:
         if {"bvp", "vfife"} <= set(spec["methods"]):
             rec["agreement"] = _agreement(scene, results)
     except Exception as exc:                  # the case fails, never the sweep
+        reraise_interrupt(exc)                # but Ctrl-C in this process (Numba) stops it
         where = traceback.extract_tb(exc.__traceback__)[-1]
         reason = (f"{type(exc).__name__}: {exc} (at {Path(where.filename).name}:"
                   f"{where.lineno})")

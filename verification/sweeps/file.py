@@ -35,11 +35,14 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from riser import validity
 from riser.errors import SceneError
 from riser.io.scene_file import is_file, load_scene, path_problem, read_text, scene_from_dict
 from riser.result import METHODS
 from riser.scene import Scene
 from verification.catalog import builtin_paths, resolve
+
+from . import inert
 
 #: the most cases one sweep file may expand to (each is validated before anything runs,
 #: about 1 ms each)
@@ -319,6 +322,7 @@ def load_sweep(name_or_path: str | Path) -> Sweep:
             raise SceneError(source, f'set."{key}"', "cannot be set: a sweep solves statics "
                              "and names its cases itself")
     base_scene, base_dict = _read_base(data["base"], path.parent, source)
+    _refuse_inert(source, base_scene, vary, fixed, methods)
     sweep = Sweep(path.stem, source, data["base"], base_scene, tuple(methods), vary, fixed,
                   builtin=path.parent == SWEEP_DIR and not Path(name_or_path).exists())
     if base_dict.pop("dynamics", None) is not None:
@@ -334,6 +338,29 @@ def load_sweep(name_or_path: str | Path) -> Sweep:
     return sweep
 
 
+def _refuse_inert(source: str, base_scene: Scene, vary, fixed: dict, methods) -> None:
+    """A varied or set key that cannot change what a sweep case solves: one SceneError
+    (:mod:`verification.sweeps.inert`)."""
+    keys = [v.key for v in vary] + list(fixed)
+    converts = inert.converts(base_scene, keys, methods)
+    named = [(f"vary[{i}].key", v.key) for i, v in enumerate(vary)]
+    for where, key in named + [(f'set."{k}"', k) for k in fixed]:
+        why = inert.why_inert(key, methods, converts)
+        if why is not None:
+            raise SceneError(source, where, inert.message(key, why))
+
+
+def presolve_checks(scene: Scene, methods) -> None:
+    """What the methods check of a scene before solving it (raising SceneError, as a
+    plain ``solve`` of it is refused, exit 2): a tensioner's pull against the line's
+    weight and a free end's buoyancy (both methods: riser.validity.check_end_loads), the
+    VFIFE's element length against the line, its segments and a slug
+    (riser.validity.check_resolution)."""
+    validity.check_end_loads(scene)
+    if "vfife" in methods:
+        validity.check_resolution(scene, scene.vfife.element_length)
+
+
 def _case(sweep: Sweep, base_dict: dict, index: int, pick: tuple) -> Case:
     data = copy.deepcopy(base_dict)
     values = {}
@@ -343,6 +370,7 @@ def _case(sweep: Sweep, base_dict: dict, index: int, pick: tuple) -> Case:
             set_value(data, v.key, copy.deepcopy(v.values[k]))
         except ValueError as exc:
             raise SceneError(sweep.source, f"vary[{i}].key", str(exc)) from None
+    given = ", ".join(f"{k} = {json.dumps(x, default=str)}" for k, x in values.items())
     try:
         scene = scene_from_dict(data, f"case {index}")
     except SceneError as exc:
@@ -351,7 +379,6 @@ def _case(sweep: Sweep, base_dict: dict, index: int, pick: tuple) -> Case:
         if fixed is not None and fixed not in values:   # a [set] value, the same in every case
             raise SceneError(sweep.source, f'set."{fixed}"', f"{exc.key}: {exc.message}") \
                 from None
-        given = ", ".join(f"{k} = {json.dumps(x, default=str)}" for k, x in values.items())
         hint = ""
         if "required key is missing" in exc.message and exc.key.rsplit(".", 1)[0] in \
                 {v.key.rsplit(".", 1)[0] for v in sweep.vary}:
@@ -359,4 +386,9 @@ def _case(sweep: Sweep, base_dict: dict, index: int, pick: tuple) -> Case:
                     "keys in every case under [set])")
         raise SceneError(sweep.source, f"case {index} ({given}): {exc.key}",
                          exc.message + hint) from None
+    try:                                   # the methods' own checks before solving
+        presolve_checks(scene, sweep.methods)
+    except SceneError as exc:
+        raise SceneError(sweep.source, f"case {index} ({given}): {exc.key}",
+                         exc.message) from None
     return Case(index, values, data, scene, case_digest(data, sweep.methods))
