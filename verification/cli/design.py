@@ -28,7 +28,9 @@ def cmd_fatigue(args) -> int:
     head = fatigue_report.write(res, out, seconds=time.perf_counter() - t0)
     print(f"{scene.name}: fatigue over {len(res.states)} sea state(s), records "
           f"{head['record_s']:.0f} s to {max(st.record_s for st in res.states):.0f} s")
-    print(f"  touchdown damage per year: rainflow (VFIFE) {head['touchdown_rainflow']:.4g}, "
+    print(f"  touchdown damage per year at s = {head['touchdown_s']:.1f} m (the VFIFE's worst in "
+          f"the touchdown zone; report.md: each sea state's share): rainflow (VFIFE) "
+          f"{head['touchdown_rainflow']:.4g}, "
           f"Dirlik (FD) {head['touchdown_dirlik']:.4g} (ratio {head['ratio']:.3g}); hang-off "
           f"ratio {head['hang_off_ratio']:.3g}")
     print(f"  wrote {out}/: {', '.join(outdir.FATIGUE)}")

@@ -1,8 +1,10 @@
 """The files of a scatter diagram's fatigue (:mod:`.fatigue`): ``fatigue_along_s.csv``
 (s [m], per estimate the damage per year [1/year] and the life [years]),
-``sea_states.csv`` (per sea state and estimate: the damage rate [1/s] at the touchdown's
-worst station of each estimate and at the hang-off, the record, the wall time, the
-VFIFE's largest dynamic utilisation), ``stations.csv`` (the headline: damage per year at
+``sea_states.csv`` (per sea state and estimate: the damage rate [1/s] and the share of
+the damage per year [1/year] (probability x rate x a year) at the headline's touchdown
+station and at the hang-off, the shares summing over the sea states to the headline's
+damage per year; the estimate's own worst station in the touchdown zone and its rate;
+the record, the wall time, the VFIFE's largest dynamic utilisation), ``stations.csv`` (the headline: damage per year at
 the touchdown and the hang-off by each estimate, the ratios to the VFIFE's rainflow),
 ``fatigue.png``, ``report.md``."""
 
@@ -15,11 +17,13 @@ import pandas as pd
 
 from riser.design.fatigue import SECONDS_PER_YEAR
 from verification.report.figures import new_figure, save
-from verification.report.markdown import GENERATED_NOTE, md_table
+from verification.report.markdown import GENERATED_NOTE, md_table, timed
 
 from .fatigue import (ESTIMATES, TOUCHDOWN_ZONE, ScatterFatigue, fd_utilisation, stations,
                       worst_in_zone)
 
+#: the spectrum's name in the report
+_KIND = {"jonswap": "JONSWAP", "pierson-moskowitz": "Pierson-Moskowitz"}
 #: what each estimate is, for the report
 TITLES = {"rainflow_vfife": "VFIFE time domain, rainflow",
           "rainflow_fd": "FD linear record (same realisation), rainflow",
@@ -49,7 +53,14 @@ def station_table(result: ScatterFatigue) -> pd.DataFrame:
 
 
 def sea_state_table(result: ScatterFatigue) -> pd.DataFrame:
+    """Per sea state: the figures of its runs and, per estimate, at the headline's stations
+    (:func:`.fatigue.stations`: the touchdown's and the hang-off) the damage rate [1/s]
+    and its share of the damage per year [1/year] (probability x rate x a year, the
+    interpolation of :func:`.fatigue.run_scatter`: the shares add up to the headline),
+    and the estimate's own worst station in this sea state's touchdown zone."""
     rows = []
+    head = stations(result)
+    s_td, s_ho = float(result.s[head["touchdown"]]), float(result.s[head["hang_off"]])
     for st in result.states:
         cmp = st.comparison
         info = cmp.vfife_result.info
@@ -65,14 +76,20 @@ def sea_state_table(result: ScatterFatigue) -> pd.DataFrame:
                "fd_max_utilisation": u_fd, "fd_max_utilisation_s": u_fd_s,
                "touchdown_range_m": (info.get("dynamic_max_touchdown_s", np.nan)
                                      - info.get("dynamic_min_touchdown_s", np.nan))}
+        row["touchdown_s"], row["hang_off_s"] = s_td, s_ho
+        share = st.probability * SECONDS_PER_YEAR
         for e in ESTIMATES:
             r = st.rates[e]
             zone = ((st.s >= st.tdp_s + TOUCHDOWN_ZONE[0])
                     & (st.s <= st.tdp_s + TOUCHDOWN_ZONE[1]))
             j = int(np.flatnonzero(zone)[np.argmax(r[zone])])
-            row[f"{e}_touchdown_rate"] = float(r[j])
-            row[f"{e}_touchdown_s"] = float(st.s[j])
-            row[f"{e}_hang_off_rate"] = float(r[-1])
+            at_td, at_ho = (float(np.interp(x, st.s, r)) for x in (s_td, s_ho))
+            row[f"{e}_touchdown_rate"] = at_td
+            row[f"{e}_touchdown_damage_per_year"] = share * at_td
+            row[f"{e}_hang_off_rate"] = at_ho
+            row[f"{e}_hang_off_damage_per_year"] = share * at_ho
+            row[f"{e}_own_worst_rate"] = float(r[j])
+            row[f"{e}_own_worst_s"] = float(st.s[j])
         rows.append(row)
     return pd.DataFrame(rows)
 
@@ -92,7 +109,8 @@ def write(result: ScatterFatigue, out: Path, note: str = "", seconds: float = 0.
     _plot(result, out / "fatigue.png")
     _report(result, ss, tab, out / "report.md", note, seconds)
     d = tab.set_index("estimate")
-    return {"touchdown_rainflow": d.loc["rainflow_vfife", "touchdown_damage_per_year"],
+    return {"touchdown_s": d.loc["rainflow_vfife", "touchdown_s"],
+            "touchdown_rainflow": d.loc["rainflow_vfife", "touchdown_damage_per_year"],
             "touchdown_dirlik": d.loc["dirlik_fd", "touchdown_damage_per_year"],
             "ratio": d.loc["dirlik_fd", "touchdown_ratio"],
             "hang_off_ratio": d.loc["dirlik_fd", "hang_off_ratio"],
@@ -127,24 +145,31 @@ def _report(result, ss: pd.DataFrame, tab: pd.DataFrame, path: Path, note: str,
              f"{r.own_worst_s:.1f} m", f"{r.hang_off_damage_per_year:.4g}",
              f"{r.hang_off_ratio:.3g}") for e, r in head.iterrows()]
     srows = [(f"{r.hs:g}", f"{r.tp:g}", f"{r.probability:g}", f"{r.record_s:.1f}",
-              f"{r.rainflow_vfife_touchdown_rate * SECONDS_PER_YEAR:.4g}",
-              f"{r.dirlik_fd_touchdown_rate * SECONDS_PER_YEAR:.4g}",
+              f"{r.rainflow_vfife_touchdown_damage_per_year:.4g}",
+              f"{r.dirlik_fd_touchdown_damage_per_year:.4g}",
+              f"{r.rainflow_vfife_own_worst_rate * SECONDS_PER_YEAR:.4g} at "
+              f"{r.rainflow_vfife_own_worst_s:.1f} m",
               f"{r.dirlik_fd_touchdown_rate / r.rainflow_vfife_touchdown_rate:.3g}",
               f"{r.rainflow_fd_touchdown_rate / r.rainflow_vfife_touchdown_rate:.3g}",
               f"{r.dirlik_fd_touchdown_rate / r.rainflow_fd_touchdown_rate:.3g}",
               f"{r.dirlik_fd_hang_off_rate / r.rainflow_vfife_hang_off_rate:.3g}",
               f"{r.touchdown_range_m:.1f}", f"{r.vfife_max_utilisation:.4f}",
               f"{r.fd_max_utilisation:.4f}",
-              f"{r.wall_s:.0f}") for r in ss.itertuples()]
+              timed(r.wall_s, ".0f", "")) for r in ss.itertuples()]
+    total = ("**sum**", "", f"{ss.probability.sum():g}", "",
+             f"**{ss.rainflow_vfife_touchdown_damage_per_year.sum():.4g}**",
+             f"**{ss.dirlik_fd_touchdown_damage_per_year.sum():.4g}**",
+             *[""] * (len(srows[0]) - 6))
     td = head.loc["rainflow_vfife", "touchdown_s"]
+    sp = sc.waves.spectrum
     text = [
         f"# Fatigue by two methods: {sc.name}", "", GENERATED_NOTE, "",
         f"{sc.title}. DNV-RP-C203 curve {fat.sn_curve} ({fat.environment}), SCF {fat.scf:g}, "
         f"{fat.points} points around the outer fibre (each station's worst), the wall's "
         f"thickness correction; VFIFE at {result.element_length:g} m elements. Each sea state "
-        "of the scatter diagram is the scene's JONSWAP spectrum at its Hs and Tp (100 "
-        "components, the scene's seed); the VFIFE runs a ramp, a settling time and then one "
-        "repeat period of the sea (`compare --dynamics`); the frequency domain (FD) solves "
+        f"of the scatter diagram is the scene's {_KIND.get(sp.kind, sp.kind)} spectrum at "
+        f"its Hs and Tp ({sp.components} components, seed {sp.seed}); the VFIFE runs a "
+        "ramp, a settling time and then one repeat period of the sea (`compare --dynamics`); the frequency domain (FD) solves "
         "the same components about the BVP's static state, the drag linearised "
         "stochastically.", "",
         "## Damage per year over the scatter diagram", "",
@@ -154,7 +179,12 @@ def _report(result, ss: pd.DataFrame, tab: pd.DataFrame, path: Path, note: str,
         md_table(["estimate", "touchdown damage/yr", "ratio", "own worst in the zone",
                   "hang-off damage/yr", "ratio"], rows), "",
         "## Per sea state", "",
-        "Damage per year as if the sea state lasted the whole year. Columns: Dirlik (FD) over "
+        f"At the headline's touchdown station (s = {td:.1f} m) and hang-off: each sea "
+        "state's share of the damage per year (its probability x its damage rate x a "
+        "year), so that the shares add up to the headline's damage per year (the sum "
+        "row); beside them the sea state's own worst VFIFE station in its touchdown zone "
+        "(damage per year as if the sea state lasted the whole year, at its own s: these "
+        "do not add up). Ratios are at the headline's station: Dirlik (FD) over "
         "rainflow (VFIFE) at the touchdown, split into the response model (the FD's linear "
         "record of the same realisation counted by rainflow, over the VFIFE's) and the "
         "spectral estimator (Dirlik over the FD record's rainflow); the same ratio at the "
@@ -162,15 +192,16 @@ def _report(result, ss: pd.DataFrame, tab: pd.DataFrame, path: Path, note: str,
         "(DNV, functional = static, environmental = dynamic): the VFIFE's over its record, "
         "the FD's from the most probable maxima of tension and moment over the same "
         "duration, combined in phase (an upper bound).", "",
-        md_table(["Hs [m]", "Tp [s]", "probability", "record [s]", "VFIFE rainflow /yr",
-                  "FD Dirlik /yr", "Dirlik / VFIFE", "model: FD / VFIFE rainflow",
+        md_table(["Hs [m]", "Tp [s]", "probability", "record [s]",
+                  "VFIFE rainflow share /yr", "FD Dirlik share /yr",
+                  "VFIFE own worst /yr (whole year in it)", "Dirlik / VFIFE", "model: FD / VFIFE rainflow",
                   "estimator: Dirlik / FD rainflow", "hang-off Dirlik / VFIFE",
                   "touchdown travel [m]", "VFIFE max utilisation", "FD max utilisation",
-                  "wall [s]"], srows), "",
+                  "wall [s]"], srows + [total]), "",
         "![fatigue life](fatigue.png)", "",
         reading(head), "",
         "Files: `stations.csv`, `sea_states.csv`, `fatigue_along_s.csv`. Run in "
-        f"{seconds:.0f} s" + (f" ({note})" if note else "") + ".", ""]
+        f"{timed(seconds, '.0f')}" + (f" ({note})" if note else "") + ".", ""]
     path.write_text("\n".join(text))
 
 
