@@ -48,8 +48,8 @@ def run_unit(name: str, unit: str | None, out: str, note: str = "",
     The unit writes into a staging folder beside its report
     (:func:`~verification.runtime.outdir.staging_folder`); its CSV and JSON files are made
     machine-independent there (:func:`~verification.runtime.stable.stabilise`: timings out,
-    floats to 6 significant digits; the reports' text says :data:`~verification.report.
-    markdown.TIMED` where it measured a time: :func:`~verification.report.markdown.timed`),
+    floats to 6 significant digits; where the reports' text measured a time it says
+    :data:`verification.report.markdown.TIMED`, :func:`~verification.report.markdown.timed`),
     and only then do they replace the old report
     (:func:`~verification.runtime.outdir.swap_in`). A unit that raises, or is
     interrupted, leaves the old report as it was."""

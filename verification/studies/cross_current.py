@@ -23,7 +23,7 @@ from riser.errors import SolveFailed
 from verification.catalog import resolve
 from verification.comparison.protocol import compare
 from verification.report.figures import new_figure, save
-from verification.report.markdown import md_table
+from verification.report.markdown import md_table, timed
 
 from .study import Study
 
@@ -118,8 +118,9 @@ def _report(df: pd.DataFrame, name: str, base, path: Path, note: str) -> None:
                            "VFIFE - BVP [m]", "hang-off tension VFIFE - BVP"), rows))
     ok = df[df["verdict"] != "failed"]
     if len(ok):
-        lines += ["", f"Solve times (this run): BVP {ok.bvp_s.min():.2f}-{ok.bvp_s.max():.2f} s, "
-                  f"VFIFE {ok.vfife_s.min():.2f}-{ok.vfife_s.max():.2f} s a heading.",
+        lines += ["", f"Solve times (this run): BVP {timed(ok.bvp_s.min())} to "
+                  f"{timed(ok.bvp_s.max())}, "
+                  f"VFIFE {timed(ok.vfife_s.min())} to {timed(ok.vfife_s.max())} a heading.",
                   "", "![lateral excursion and agreement against the heading](headings.png)"]
     path.write_text("\n".join(lines) + "\n")
 

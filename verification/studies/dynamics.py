@@ -35,7 +35,8 @@ from verification.comparison import dynamics_report
 from verification.comparison.dynamics import compare_dynamics
 from verification.comparison.protocol import compare, default_columns
 from verification.comparison.report import write as write_static
-from verification.report.markdown import GENERATED_NOTE, md_table, pct
+from verification.runtime import stable
+from verification.report.markdown import GENERATED_NOTE, md_table, pct, timed
 from riser.dynamics import Dynamics, TopMotion
 from riser.errors import SceneError
 
@@ -158,9 +159,9 @@ def run_unit(name: str, out: Path, note: str = "", full: bool = False) -> str:
                     continue
                 _reported_only(dcf)
                 conv += _record(dcf, case, REFINEMENT * h)
-    table = pd.DataFrame(rows)
+    table = _quantised(pd.DataFrame(rows))
     table.to_csv(folder / "cases.csv", index=False, float_format="%.8g")
-    conv_table = pd.DataFrame(conv).sort_values("element_length_m") if conv else None
+    conv_table = _quantised(pd.DataFrame(conv).sort_values("element_length_m")) if conv else None
     if conv_table is not None:
         conv_table.to_csv(folder / "convergence.csv", index=False, float_format="%.8g")
     (folder / "report.md").write_text(_markdown(name, scene, comp, table, conv_table, note))
@@ -213,14 +214,15 @@ def _markdown(name, scene, comp, table, conv, note) -> str:
                      _deg(r.get("hang_off_tension_phase_deg")),
                      pct(r.get("tension_amplitude")), pct(r.get("moment_amplitude")),
                      pct(r.get("moment_out_amplitude")), pct(r.get("displacement_amplitude")),
-                     pct(r["higher_harmonics"], 2), round(r["fd_s"], 2),
-                     round(r["vfife_s"], 1),
+                     pct(r["higher_harmonics"], 2), timed(r["fd_s"], ".2f", ""),
+                     timed(r["vfife_s"], ".1f", ""),
                      {True: "yes", False: "**no**"}.get(r["passed"], "n/a")))
     lines += [md_table(hdr, body), "",
               f"Cost of the headline cases (the same answer, the scene's element length): "
-              f"the frequency domain answers in {head['fd_s'].median():.2f} s (median; "
+              f"the frequency domain answers in {timed(head['fd_s'].median())} (median; "
               f"Richardson on two grids, the drag iterated), the VFIFE in "
-              f"{head['vfife_s'].median():.1f} s: a ratio of {ratio:.0f}, both measured in "
+              f"{timed(head['vfife_s'].median(), '.1f')}: a ratio of "
+              f"{timed(ratio, '.0f', '')}, both measured in "
               "this run.", ""]
     if conv is not None:
         lines += ["## Refinement of the VFIFE", "", "The smallest amplitude of the sweep "
@@ -239,6 +241,16 @@ def _markdown(name, scene, comp, table, conv, note) -> str:
         if order:
             lines += [f"Observed order of the moment difference: {order}.", ""]
     return "\n".join(lines)
+
+
+def _quantised(table: pd.DataFrame) -> pd.DataFrame:
+    """The agreement columns rounded to the quanta their round-off justifies
+    (:data:`verification.runtime.stable.QUANTA`, 0.05 % and 0.05 deg), so that the report's
+    text and the CSV print the same stable numbers on any machine."""
+    for col, q in stable.QUANTA["cases.csv"].items():
+        if col in table:
+            table[col] = (pd.to_numeric(table[col], errors="coerce") / q).round() * q
+    return table
 
 
 def _deg(value) -> str:

@@ -80,7 +80,9 @@ def reproduce(name: str, *, out: Path | None = None, jobs: int = 1, full: bool =
         progress.log(f"reproduce {name}: {len(todo)} unit(s) on {jobs} process(es), "
                      f"expected ~{clock_text(sum(seconds) / jobs)} "
                      f"(the studies' declared times)")
-    work = [(n, u, report_folder(name, out, n), note, full) for n, u in todo]
+    # the note qualifies timings, which the committed reports no longer hold: it goes to
+    # timings.json with them, not into the reports (it names this machine's cores)
+    work = [(n, u, report_folder(name, out, n), "", full) for n, u in todo]
     for k, (i, got) in enumerate(Engine(jobs).map(run_unit, work, progress), start=1):
         if isinstance(got, BaseException):      # the others go on; said at the end
             failed.append(f"{todo[i][0]} {todo[i][1] or ''}".strip() + f": {got}")

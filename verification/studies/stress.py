@@ -36,7 +36,7 @@ from verification.catalog import SCENE_DIR, resolve
 from verification.comparison.agreement import agreement, unresolved_bending
 from verification.pipeline import solve_scene
 from verification.quantities import reference_depth
-from verification.report.markdown import GENERATED_NOTE, fmt, md_table
+from verification.report.markdown import GENERATED_NOTE, fmt, md_table, timed
 from verification.runtime.progress import scoped
 
 from .study import Study
@@ -201,7 +201,7 @@ def _report(df: pd.DataFrame, out: Path) -> None:
         md_table(["scene", "method", "outcome", "residual", "time [s]", "agreement"],
                  [(r.scene, r.method, r.outcome, fmt(r.residual, 3) if r.residual is not None
                    and not (isinstance(r.residual, float) and math.isnan(r.residual)) else "",
-                   f"{r.wall_time_s:.2f}", r.agreement) for r in df.itertuples()]),
+                   timed(r.wall_time_s, ".2f", ""), r.agreement) for r in df.itertuples()]),
         "", "## Messages", "",
     ]
     for r in df.itertuples():

@@ -22,7 +22,7 @@ import pandas as pd
 from verification.catalog import resolve
 from verification.comparison.protocol import compare
 from verification.report.figures import new_figure, save
-from verification.report.markdown import GENERATED_NOTE, md_table
+from verification.report.markdown import GENERATED_NOTE, md_table, timed
 
 #: scene -> what it is
 SCENES = {"scr-steel-design": "steel catenary riser, contents at 20 MPa",
@@ -99,7 +99,8 @@ def _report(cs: pd.DataFrame, path: Path, note: str, seconds: float) -> None:
                   "difference", "tolerance", "max von Mises [MPa]", "passes the code",
                   "comparison"], rows), "",
         "![utilisation](utilisation.png)", "",
-        f"Files: `utilisation.csv` (both methods along s), `cases.csv`. Run in {seconds:.1f} s"
+        "Files: `utilisation.csv` (both methods along s), `cases.csv`. Run in "
+        f"{timed(seconds, '.1f')}"
         + (f" ({note})" if note else "") + ".", ""]
     path.write_text("\n".join(text))
 

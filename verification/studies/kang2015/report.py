@@ -17,7 +17,7 @@ from scipy.interpolate import CubicSpline
 from riser.sections import segment_properties
 from verification.quantities import signed_moment
 from verification.report.figures import new_figure, save
-from verification.report.markdown import GENERATED_NOTE, md_table, pct
+from verification.report.markdown import GENERATED_NOTE, md_table, pct, timed
 
 #: (error, BVP floor) columns of the epsilon sweep: peak moment rel., top angle, hang-off x
 ERRORS = (("max_moment_rel_err", "max_moment_rel"), ("top_angle_err_deg", "top_angle_deg"),
@@ -150,7 +150,8 @@ def _setup(q: dict) -> list[str]:
     lt = base.line_types[base.segments[0].line_type]
     sv, info = q["solved"][0], q["solved"][0].jlay["analytic"].info
     vf = (f"the VFIFE on {base.vfife.element_length:g} m elements (the scene's; base case "
-          f"{sv.seconds['vfife']:.1f} s)" if "vfife" in sv.seconds else "the VFIFE (not run)")
+          f"{timed(sv.seconds['vfife'], '.1f')})" if "vfife" in sv.seconds
+          else "the VFIFE (not run)")
     return [
         "## What was run", "",
         f"Scene `{cf['SCENE']}` (docs/references.md, Kang et al. 2015): {lt.outer_diameter} "
@@ -400,7 +401,7 @@ def write_report(q: dict, out: Path, note: str) -> None:
               for m, ws in sv.warnings.items() for w in ws]
     if warned:
         lines += ["Warnings of the case solves: " + "; ".join(warned) + ".", ""]
-    lines += [f"The study took {q['total']:.1f} s in all." + (f" {note}" if note else ""), "",
+    lines += [f"The study took {timed(q['total'], '.1f')} in all." + (f" {note}" * bool(note)), "",
               "## Figures", "", "![base case](base.png)", "", "![matched model](matched.png)",
               "", "![families](families.png)", "", "![epsilon scaling](epsilon.png)", "",
               "## Files", "",

@@ -41,7 +41,7 @@ from riser.scene import Scene
 from verification.catalog import resolve
 from verification.pipeline import solve_scene
 from verification.report.figures import new_figure, save
-from verification.report.markdown import GENERATED_NOTE, md_table, pct
+from verification.report.markdown import GENERATED_NOTE, md_table, pct, timed
 
 from ..study import Study
 from .analysis import (
@@ -372,10 +372,11 @@ def write_report(out: Path, q: dict, frame: pd.DataFrame, note: str) -> None:
     lines += ["## Timings", "",
               md_table(["run", "wall [s]", "of which dynamics [s]", "real-time factor",
                         "warnings"],
-                       [(r.label, f"{r.wall:.1f}", f"{r.dyn_wall:.1f}", f"{r.realtime:.0f}",
+                       [(r.label, timed(r.wall, ".1f", ""), timed(r.dyn_wall, ".1f", ""),
+                         timed(r.realtime, ".0f", ""),
                          ", ".join(sorted({w.split(':')[0] for w in r.warnings})) or "-")
                         for r in ok]), "",
-              f"The study took {q['total']:.1f} s in all (statics, dynamics, analysis and "
+              f"The study took {timed(q['total'], '.1f')} in all (statics, dynamics, analysis and "
               "figures)." + (f" {note}" if note else ""),
               f"The smallest moment at the stations' nodes over every run is "
               f"{min(lows) / 1e3:.1f} kN m (magnitudes: no sign change).", ""]

@@ -26,7 +26,7 @@ from verification.catalog import resolve
 from verification.comparison import dynamics_report, sea_report
 from verification.comparison.dynamics import compare_dynamics
 from verification.comparison.sea_dynamics import compare_sea
-from verification.report.markdown import md_table, pct
+from verification.report.markdown import md_table, pct, timed
 
 #: scene -> what drives it
 SCENES = {"jumper-wave": "regular wave, head-on",
@@ -99,7 +99,7 @@ def _report(df: pd.DataFrame, rows: pd.DataFrame, path: Path, note: str) -> None
             continue
         out.append((f"[`{r.scene}`]({r.scene}/report.md)", r.drive, r.verdict,
                     f"`{r.nearest_tolerance}`", pct(r.difference), f"{r.tolerance:g}",
-                    f"{r.fd_s:.1f} / {r.vfife_s:.1f}"))
+                    f"{timed(r.fd_s, '.1f', '')} / {timed(r.vfife_s, '.1f', '')}"))
     lines.append(md_table(("scene", "drive", "verdict", "row nearest its tolerance",
                            "difference", "tolerance", "wall FD / VFIFE [s]"), out))
     if len(rows):

@@ -31,7 +31,7 @@ from verification.catalog import resolve
 from verification.pipeline import vfife_equivalent
 from verification.quantities import reference_depth
 from verification.report.figures import new_figure, save
-from verification.report.markdown import GENERATED_NOTE, md_table, pct
+from verification.report.markdown import GENERATED_NOTE, md_table, pct, timed
 
 from ..study import Study
 from .agreement import judged, summary_lines
@@ -277,9 +277,10 @@ def _report(df, fits, results, out: Path, t_forward, t_inverse, t_total, vf_time
             resolve(SCENES[0.0]), results[(0.0, "forward")].summary()))
           if vf_time is not None else []),
         f"- BVP wall time: 9 forward solves (5 currents with C_Dn 0.1, 4 with 1.0) "
-        f"{t_forward:.2f} s, 5 inverse solves {t_inverse:.2f} s"
+        f"{timed(t_forward)}, 5 inverse solves {timed(t_inverse)}"
         + (f", {int(df.vfife.notna().sum() / len(QUANTITIES))} VFIFE solves (1 m elements) "
-           f"{vf_time:.1f} s" if vf_time is not None else "") + f"; whole report {t_total:.1f} s.",
+           f"{timed(vf_time, '.1f')}" if vf_time is not None else "")
+        + f"; whole report {timed(t_total, '.1f')}.",
         "",
         "## Table 2, forward (paper's S_L and T_TDP given)",
         "",

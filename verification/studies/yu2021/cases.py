@@ -39,7 +39,7 @@ from riser.scene import Current, FixedEnds, Scene
 from verification.catalog import resolve
 from verification.pipeline import solve_scene
 from verification.report.figures import new_figure, save
-from verification.report.markdown import GENERATED_NOTE, md_table, pct
+from verification.report.markdown import GENERATED_NOTE, md_table, pct, timed
 
 from ..study import Study
 from .agreement import conditioning, within_lines
@@ -360,7 +360,8 @@ def _report(df: pd.DataFrame, out: Path, xh: float, stored: float, timing: dict,
             i = err.idxmax()
             lines.append(f"- {m.upper()} vs paper: median |rel. diff| {pct(err.median(), 1)}, worst "
                          f"{pct(err.max(), 1)} ({cmp.loc[i, 'study']}/{cmp.loc[i, 'case']} "
-                         f"{cmp.loc[i, 'quantity']}); wall time {timing[m]:.1f} s for all cases.")
+                         f"{cmp.loc[i, 'quantity']}); wall time "
+                         f"{timed(timing[m], '.1f')} for all cases.")
     if has_vf:
         both = df[df.bvp.notna() & df.vfife.notna()]
         if len(both):
@@ -371,7 +372,7 @@ def _report(df: pd.DataFrame, out: Path, xh: float, stored: float, timing: dict,
     if missing:
         lines += ["- Cases a method gave no values for (their rows give the other alone):",
                   *("  " + m for m in missing)]
-    lines.append(f"- Report generated in {total:.1f} s.")
+    lines.append(f"- Report generated in {timed(total, '.1f')}.")
     lines += ["", "Differences to the paper of a few percent are expected: the paper leaves "
               "the hang-off offset and the contents unstated (heavier contents lower the crests "
               "and raise the hang-off tension); nothing here is tuned to its numbers beyond the "

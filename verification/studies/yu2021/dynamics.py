@@ -45,7 +45,7 @@ from riser.scene import Dynamics, Scene, TopMotion
 from riser.sections import segment_properties
 from verification.pipeline import solve_scene
 from verification.report.figures import new_figure, save
-from verification.report.markdown import md_table, pct
+from verification.report.markdown import md_table, pct, timed
 
 AMPLITUDE, PERIOD = 1.5, 10.0          # m, s: the hang-off heave
 TOP_SPEED = 1.2                        # m/s at the surface
@@ -369,14 +369,14 @@ def _section(frame, runs, sens, share, duration, element_length, total, note) ->
             change = r["last"]["max_hang_off_tension"] / runs[c]["last"][
                 "max_hang_off_tension"] - 1.0
             drag_only = f": drag alone changes the {c} value by {pct(change, 1)}"
-    each = ", ".join(f"{c} {r['wall']:.1f} s" for c, r in ok.items())
+    each = ", ".join(f"{c} {timed(r['wall'], '.1f')}" for c, r in ok.items())
     sens_wall = sum(r["wall"] for r in sens.values() if r is not None)
     lines += [
-        f"Time: {len(walls)} runs at damping {DAMPING} took {sum(walls):.1f} s "
+        f"Time: {len(walls)} runs at damping {DAMPING} took {timed(sum(walls), '.1f')} "
         f"({each}; of which the "
-        f"dynamics {sum(r['dyn_wall'] for r in ok.values()):.1f} s, the rest statics)"
-        + (f", {len(sens)} sensitivity runs {sens_wall:.1f} s" if sens else "")
-        + f"; the section {total:.1f} s in all." + (f" {note}" if note else ""), "",
+        f"dynamics {timed(sum(r['dyn_wall'] for r in ok.values()), '.1f')}, the rest statics)"
+        + (f", {len(sens)} sensitivity runs {timed(sens_wall, '.1f')}" if sens else "")
+        + f"; the section {timed(total, '.1f')} in all." + (f" {note}" if note else ""), "",
         "Reading the differences: the heave barely changes the peak moment here (dynamic "
         f"within {100 * dyn_static:.1f} % of the static one in the same current), so the "
         "moment carries the "
