@@ -11,12 +11,19 @@ the console; ``--strict`` turns them into exit 1). The names:
 - ``axial_strain``: T/EA beyond the line type's ``max_strain`` (default 1 %: a linear EA
   is a small-strain model, a steel pipe yields at ~0.2 %);
 - ``above_surface``: the line above the sea surface (y > water_depth): the model is fully
-  submerged (no splash zone, no change of buoyancy);
+  submerged (no splash zone, no change of buoyancy); during the dynamics, an axis within
+  its outer radius of the instantaneous surface (:func:`dynamic_warnings`);
 - ``below_seabed``: the line below y = 0 where nothing holds it (no ``[seabed]``, or the
   rigid seabed of the Wang forms beyond the touchdown), or deeper in an elastic seabed
   than the line's diameter (a linear Winkler law no longer describes the soil);
 - ``compression``: effective compression in a line type with ``compression = false``
   (chain, rope, slack cable);
+- ``bending_strain``: a steel wall's bending strain (OD/2)/R beyond its elastic limit
+  SMYS/E (:func:`riser.sections.bending_limit`: E from EI and the wall; SMYS the line
+  type's ``yield_strength``, else X65 assumed for a wall recognised as steel);
+- ``bend_radius``: a bend radius below the line type's ``minimum_bend_radius``;
+- ``dynamic_compression`` (dynamics only): effective compression beyond
+  :data:`COMPRESSION_NOISE` in a line type that can carry it, where and when;
 - ``first_segment_length``: form (b) solved a suspended length far from the file's (not
   for the J-lay form, whose file length includes the line on the seabed).
 

@@ -6,6 +6,7 @@ riser/sections.py; the envelope's times and submergence: vfife/dynamic_outputs.p
 
 from __future__ import annotations
 
+import json
 import math
 import re
 
@@ -244,3 +245,19 @@ def test_unmodified_dynamic_builtin_no_such_warning(tmp_path):
     assert mine(res.warnings) == []
     env = res.dynamics.envelope
     assert np.all(np.isfinite(env["submergence_min"])) and np.min(env["submergence_min"]) > 5.0
+
+
+def test_ttr_in_radians_cli_warns_and_strict_fails(run_cli, tmp_path):
+    # the issue: exit 0 with only the axial strain checked; now the warning on the console
+    # and in summary.json, and --strict turns it into exit 1
+    text = builtin_paths()["ttr-steel"].read_text().replace("direction_deg = 90.0",
+                                                            "direction_deg = 1.5708")
+    path = tmp_path / "ttr-radians.toml"
+    path.write_text(text)
+    out = tmp_path / "o"
+    code, _, err = run_cli(["solve", str(path), "--method", "bvp", "--out", str(out)])
+    assert code == 0 and "warning: bvp: bending_strain: " in err
+    assert named(json.loads((out / "summary.json").read_text())["warnings"], "bending_strain")
+    code, _, err = run_cli(["solve", str(path), "--method", "bvp", "--out", str(out),
+                            "--strict"])
+    assert code == 1 and "--strict" in err.splitlines()[-1]
