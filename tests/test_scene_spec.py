@@ -294,7 +294,8 @@ def expected_line_type(name: str, t: dict) -> dict:
             "submerged_weight": t.get("submerged_weight"),
             "max_strain": t.get("max_strain", 0.01), "compression": t.get("compression", True),
             "yield_strength": t.get("yield_strength"),
-            "tensile_strength": t.get("tensile_strength")}
+            "tensile_strength": t.get("tensile_strength"),
+            "minimum_bend_radius": t.get("minimum_bend_radius")}
 
 
 def expected_dynamics(dyn: dict) -> dict:
