@@ -10,9 +10,13 @@ Scheme ('catenary + coarse-to-fine dynamic relaxation'):
    finer (:func:`mesh_sequence`: 10 -> 4 -> 1 m, 10 -> 2 -> 0.5 m), and relax again with
    heavier mass-proportional damping; repeat down to the requested element length
    (yu2021-a2-sheared at 0.5 m: 34 s with 10 -> 0.5 m, 5.7 s with 10 -> 2 -> 0.5 m).
-   Without seabed friction each finer mesh is solved by Newton's method instead, planar
-   or 3D (:func:`newton_stage`, vfife/newton.py: O(N) a mesh, the relaxation's N^2 gone),
-   and relaxed only where Newton does not converge.
+   Each finer mesh is solved by Newton's method instead, planar or 3D
+   (:func:`newton_stage`, vfife/newton.py: O(N) a mesh, the relaxation's N^2 gone), and
+   relaxed only where Newton does not converge or where seabed friction is engaged (a node
+   in contact with a friction coefficient: the relaxation's path-dependent equilibrium). A
+   scene's friction alone does not turn Newton off: a line clear of the seabed never
+   engages it (issue 44: a light cable's mid-water span over a seabed with friction 0.5
+   relaxed for 5e6 steps at 0.5 m elements and did not converge; :func:`newton_applies`).
 
 Both starting shapes are made length-consistent first (:func:`vfife.mesh.length_consistent`:
 every chord exactly l0 (1 + N/EA) with the start's tension N, the hang-off kept by small
@@ -255,11 +259,23 @@ def relax_stage(model: Model, dt: float, omega1: float, first: bool, tolerance: 
     return r
 
 
-def newton_applies(scene, knobs: RelaxationKnobs) -> bool:
-    """Newton's method finishes the statics (vfife/newton.py): no seabed friction
-    (path-dependent: the relaxation's), ``[vfife.expert] static_newton``."""
-    friction = scene.seabed is not None and scene.seabed.friction > 0.0
-    return bool(knobs.newton and not friction)
+def friction_engaged(scene, model: Model | None) -> bool:
+    """True when seabed friction acts on ``model``'s state: the scene's seabed has a
+    friction coefficient and a node of the line is in contact (y <= 0 [m], the kernels'
+    penetration test: the friction force is mu times the contact force, zero above the
+    seabed). Where it acts the equilibrium depends on the path (the relaxation's); None
+    (no state yet): the scene's friction alone."""
+    if scene.seabed is None or scene.seabed.friction <= 0.0:
+        return False
+    return model is None or bool(np.min(model.X[1]) <= 0.0)
+
+
+def newton_applies(scene, knobs: RelaxationKnobs, model: Model | None = None) -> bool:
+    """Newton's method finishes the statics (vfife/newton.py): ``[vfife.expert]
+    static_newton`` and no seabed friction engaged on the coarser equilibrium ``model``
+    (:func:`friction_engaged`; a line clear of the seabed never feels the friction, and
+    Newton's equilibrium is then exactly the relaxation's)."""
+    return bool(knobs.newton and not friction_engaged(scene, model))
 
 
 def newton_stage(scene, coarse: Model, h: float, tension: float, knobs: RelaxationKnobs,
@@ -279,6 +295,12 @@ def newton_stage(scene, coarse: Model, h: float, tension: float, knobs: Relaxati
     if progress is not None:
         progress(f"vfife statics: {label}, Newton")
     out = newton.solve(new, max(tolerance * wl, floor_f), max(tolerance * wl * hmax, floor_m))
+    if out["converged"] and friction_engaged(scene, new):
+        # Newton ignores the friction (the out-of-balance force from rest has none): a
+        # node it sets on the seabed would carry the relaxation's path-dependent friction
+        info["newton_failed"] = (f"{label}: Newton's equilibrium touches the seabed, whose "
+                                 "friction it does not model; relaxed instead")
+        return None
     if not out["converged"]:
         info["newton_failed"] = (f"{label}: Newton's method stopped at {out['residual'] / wl:.3g}"
                                  f" x element weight after {out['iterations']} iterations; "
@@ -317,10 +339,10 @@ def solve_static(scene, element_length: float, tolerance: float, planar: bool,
     model = None
     total_steps = 0
     tension = 0.0                     # the line's representative tension [N], per stage
-    use_newton = newton_applies(scene, knobs)
+    use_newton = knobs.newton
     for si, h in enumerate(stages):
         label = f"{h:g} m mesh ({si + 1}/{len(stages)})"      # progress messages
-        if si > 0 and use_newton:
+        if si > 0 and use_newton and newton_applies(scene, knobs, model):
             # each finer mesh from the coarser equilibrium by Newton's method: O(N) a mesh
             # (vfife/newton.py); the relaxation where it does not converge
             fine = newton_stage(scene, model, h, tension, knobs, planar, dead_load,
