@@ -33,7 +33,7 @@ from riser.modes import PLANES, ModalResult, mac, shape_at
 from riser.result import Status
 from verification.pipeline import vfife_equivalent
 from verification.report.figures import new_figure, save
-from verification.report.markdown import GENERATED_NOTE, md_table, pct
+from verification.report.markdown import GENERATED_NOTE, md_table, pct, timed
 from verification.runtime import outdir
 
 #: agreement target: largest |relative frequency difference| and smallest MAC
@@ -192,9 +192,9 @@ def plot_shapes(run: ModesRun, plane: str, path: Path) -> None:
 
 def _result_line(name: str, res: ModalResult) -> str:
     static = res.info.get("static_wall_time_s")
-    extra = f", static solve {static:.2f} s" if static is not None else ""
+    extra = f", static solve {timed(static)}" if static is not None else ""
     status = "" if res.converged else f"**{res.status.value}**: "
-    return (f"- **{name}**: {status}{res.message} (modal analysis {res.wall_time_s:.2f} s"
+    return (f"- **{name}**: {status}{res.message} (modal analysis {timed(res.wall_time_s)}"
             f"{extra})")
 
 

@@ -18,7 +18,7 @@ import numpy as np
 import pandas as pd
 
 from verification.report.figures import new_figure, save
-from verification.report.markdown import GENERATED_NOTE, md_table, pct
+from verification.report.markdown import GENERATED_NOTE, md_table, pct, timed
 
 from .sea_dynamics import TOLERANCE, SeaComparison
 
@@ -70,11 +70,11 @@ def markdown(sc: SeaComparison, static_markdown: str = "", heading: str = "#") -
              "- Frequency domain (`bvp/sea_response.py`): each component's harmonic "
              "response about the BVP static state, the drag linearised stochastically "
              f"(Gaussian relative velocity), {sc.fd.info.get('iterations')} iterations, "
-             f"{sc.fd_wall_s:.1f} s.",
+             f"{timed(sc.fd_wall_s, '.1f')}.",
              f"- VFIFE: {sc.element_length:g} m elements, the same components; a ramp of "
              f"{sc.ramp_s:.4g} s and {sc.settle_s:.4g} s to settle, then a record of one "
              f"repeat period of the sea, {sc.record_s:.4g} s ({vf['samples']} samples), "
-             f"{sc.vfife_wall_s:.1f} s. Over a whole repeat period the components are "
+             f"{timed(sc.vfife_wall_s, '.1f')}. Over a whole repeat period the components are "
              "orthogonal: a linear response's record variance is the FD's sigma^2 without "
              "the sampling error of a random record; the halves of the record (each not a "
              "whole period) show the scatter a record half as long would have: "
