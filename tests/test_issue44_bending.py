@@ -193,6 +193,7 @@ def test_scr_hang_off_in_the_trough_above_surface(tmp_path):
     # the surface the run used comes down to the hang-off (15 m below the still water
     # level) in the wave's 15 m trough: its axis at the surface to within 5 cm (sampled
     # every T/40: 15 m (1 - cos(pi/40)) = 4.6 cm), its wall (radius 0.1 m) out of it
+    # (the node pass itself takes the hang-off's stretch as half dry then)
     assert env["submergence_min"][-1] == pytest.approx(0.0, abs=0.05)
     # the line stays in tension here (no dynamic_compression: the least tension is
     # 293 kN, s = 70 m; the issue's -125 kN at the hang-off is not reproduced with this
@@ -261,3 +262,42 @@ def test_ttr_in_radians_cli_warns_and_strict_fails(run_cli, tmp_path):
     code, _, err = run_cli(["solve", str(path), "--method", "bvp", "--out", str(out),
                             "--strict"])
     assert code == 1 and "--strict" in err.splitlines()[-1]
+
+
+def envelope(sub, t_min, kappa=(0.0, 0.0, 0.0)):
+    """A three-station envelope along FLEX's 300 m line (tension_max 3e4 N)."""
+    s = np.array([0.0, 150.0, 300.0])
+    return {"s": s, "y_min": np.array([0.0, 50.0, 90.0]), "y_max": np.array([0.0, 50.0, 90.0]),
+            "tension_min": np.array(t_min, float), "tension_max": np.array([1e4, 2e4, 3e4]),
+            "curvature_max": np.array(kappa, float), "submergence_min": np.array(sub, float),
+            "tension_min_time": np.array([1.0, 2.0, 3.0]),
+            "curvature_max_time": np.array([4.0, 5.0, 6.0]),
+            "submergence_min_time": np.array([7.0, 8.0, 9.0])}
+
+
+@pytest.mark.parametrize("sub,t_min,name", [
+    # the axis within the outer radius 0.1 m of the surface: the wall leaves the water
+    # (the VFIFE's node pass takes that node's stretch as partly dry then)
+    ([50.0, 20.0, 0.09], [1e4, 2e4, 3e4], "above_surface"),
+    ([50.0, 20.0, 0.11], [1e4, 2e4, 3e4], None),
+    # compression beyond 1e-3 of the largest tension (30 N of 3e4), in a pipe that can
+    # carry it: dynamic_compression; 20 N is noise
+    ([50.0, 20.0, 10.0], [-40.0, 2e4, 3e4], "dynamic_compression"),
+    ([50.0, 20.0, 10.0], [-20.0, 2e4, 3e4], None),
+])
+def test_dynamic_checks_named_at_their_thresholds(sub, t_min, name):
+    sc = parse_scene(FLEX.format(keys=""), "flex.toml")
+    got = validity.dynamic_warnings(sc, envelope(sub, t_min))
+    assert [w.split(":")[0] for w in got] == ([name] if name else [])
+    if name == "above_surface":
+        assert "at s = 300.0 m at t = 9 s during the dynamics (the hang-off)" in got[0]
+    if name == "dynamic_compression":
+        assert "-0.04 kN at s = 0.0 m at t = 1 s during the dynamics" in got[0]
+
+
+def test_dynamic_bend_radius_when():
+    sc = parse_scene(FLEX.format(keys="minimum_bend_radius = 2.5"), "flex.toml")
+    got = validity.dynamic_warnings(sc, envelope([50.0, 20.0, 10.0], [1e4, 2e4, 3e4],
+                                                 kappa=[0.0, 0.5, 0.1]))
+    assert [w.split(":")[0] for w in got] == ["bend_radius"]
+    assert "2 m at s = 150.0 m at t = 5 s during the dynamics" in got[0]
