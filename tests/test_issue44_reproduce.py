@@ -306,3 +306,11 @@ def test_another_blas_thread_count_writes_the_same_bytes(tmp_path):
     assert len(files) >= 20
     assert files == sorted(p.relative_to(two) for p in two.rglob("*") if p.is_file())
     assert [f for f in files if (one / f).read_bytes() != (two / f).read_bytes()] == []
+
+
+def test_a_dynamic_response_has_4_digits_and_its_places_6():
+    # response.csv: the amplitudes along s to 4 significant digits (round-off reaches a
+    # dynamic amplitude at ~1e-5 of it), the arc length and the inputs to 6
+    out = stable.stable_csv("amplitude_m,s,fd_tension,period_s\n0.1,1999.5,875.33249,14.1234\n",
+                            "response.csv")[0]
+    assert out == "amplitude_m,s,fd_tension,period_s\n0.1,1999.5,875.3,14.1234\n"

@@ -38,6 +38,21 @@ from pathlib import Path
 
 #: significant digits of a float in a committed CSV or JSON file (module docstring)
 SIGNIFICANT = 6
+#: significant digits of the files of a dynamic response (time or frequency domain):
+#: 4. A response amplitude is ~1e-3 of the static force it rides on, so the static
+#: state's round-off (1e-8) reaches it as ~1e-5, and an explicit integration over 1e5
+#: steps adds to it (another CPU moved a dynamic agreement by 4e-5); the dynamic
+#: tolerances are 0.5-1 %: 4 digits (1e-4) are 50 times finer than them and 10 times
+#: coarser than that round-off
+DYNAMIC_FILES = frozenset({
+    "response.csv", "transfer.csv", "transfer_along_s.csv", "stations.csv", "spectra.csv",
+    "sea_along_s.csv", "timeseries.csv", "envelope.csv", "tension.csv", "dynamics.csv",
+    "fatigue_along_s.csv", "sea_states.csv"})
+DYNAMIC_SIGNIFICANT = 4
+#: the columns of those files that are places, times or inputs (6 digits: an arc length
+#: of 1999.5 m is not a response); also every column whose name ends in ``_s``
+COORDINATES = frozenset({"s", "t", "omega", "hs", "tp", "probability", "amplitude_m",
+                         "element_length", "time_step", "time_step_factor"})
 #: a value below this fraction of the largest magnitude of its CSV column (of the numbers
 #: of its JSON object) is written as 0
 NOISE = 1e-12
@@ -101,12 +116,12 @@ def _float(text: str) -> float | None:
         return None
 
 
-def _cell(value: float, scale: float) -> str:
+def _cell(value: float, scale: float, digits: int = SIGNIFICANT) -> str:
     if not math.isfinite(value):
         return "" if math.isnan(value) else ("inf" if value > 0 else "-inf")
     if abs(value) < NOISE * scale:
         return "0"
-    return f"{round_float(value):.{SIGNIFICANT}g}"
+    return f"{round_float(value, digits):.{digits}g}"
 
 
 def stable_csv(text: str, name: str = "") -> tuple[str, dict]:
@@ -122,6 +137,8 @@ def stable_csv(text: str, name: str = "") -> tuple[str, dict]:
                for j in timed}
     keep = [j for j in range(len(header)) if j not in timed]
     quanta = QUANTA.get(name, {})
+    digits = {j: DYNAMIC_SIGNIFICANT if name in DYNAMIC_FILES and header[j] not in COORDINATES
+              and not header[j].endswith("_s") else SIGNIFICANT for j in keep}
     scale = {}
     for j in keep:
         vals = [abs(v) for r in body if j < len(r)
@@ -144,7 +161,7 @@ def stable_csv(text: str, name: str = "") -> tuple[str, dict]:
                 q = 10.0 ** math.floor(math.log10(1e-6 * big)) if big > 0 else None
             if v is not None and q is not None and math.isfinite(v):
                 v = round(v / q) * q              # a multiple of the quantum, then 6 digits
-            cells.append(c if v is None else _cell(v, scale[j]))
+            cells.append(c if v is None else _cell(v, scale[j], digits[j]))
         w.writerow(cells)
     return out.getvalue(), timings
 
