@@ -26,7 +26,7 @@ import pandas as pd
 
 from bvp.harmonic import transfer_sweep
 from verification.report.figures import new_figure, save
-from verification.report.markdown import GENERATED_NOTE, fmt, md_table, pct
+from verification.report.markdown import GENERATED_NOTE, fmt, md_table, pct, timed
 
 from .dynamic_rows import DRIFT_LIMIT, TOLERANCES
 from .dynamics import (ORBIT, RAMP_PERIODS, SETTLE_PERIODS, WAVE, WINDOW_PERIODS,
@@ -166,8 +166,9 @@ def markdown(dc: DynamicComparison, static_markdown: str = "", peer_markdown: st
         lines += ["", static_markdown]
     lines += ["", f"{heading}# Agreement per amplitude", ""]
     for r in dc.results:
-        lines += [f"Amplitude {r.amplitude:g} m: FD {r.fd_wall_s:.2f} s, VFIFE "
-                  f"{r.vfife_wall_s:.1f} s (ratio {r.vfife_wall_s / max(r.fd_wall_s, 1e-9):.0f})"
+        ratio = r.vfife_wall_s / max(r.fd_wall_s, 1e-9)
+        lines += [f"Amplitude {r.amplitude:g} m: FD {timed(r.fd_wall_s)}, VFIFE "
+                  f"{timed(r.vfife_wall_s, '.1f')} (ratio {timed(ratio, '.0f', '')})"
                   + (f"; warnings: {'; '.join(r.warnings)}" if r.warnings else "") + ".", ""]
         lines.append(md_table(
             ["quantity", "FD", "VFIFE", "VFIFE vs FD", "at s [m]", "tolerance", "basis",
