@@ -379,18 +379,18 @@ def _cost(q: dict) -> list[str]:
     bm = float(np.median([sv.seconds["bvp_matched"] for sv in q["solved"]]))
     vmed = float(np.median(vf)) if vf else math.nan
     c = t["composite"]
-    rows = [(name, f"{v * 1e3:.4g}", f"{v / c:.3g}" if v < 100 * c else f"{v / c:.0f}")
+    rows = [(name, timed(v, ".4g", " ms"), timed(v / c, ".3g" if v < 100 * c else ".0f", ""))
             for name, v in (("analytic catenary, J-lay", t["catenary"]),
-                            ("analytic composite, J-lay", c), ("analytic piecewise, J-lay",
-                                                               t["piecewise"]),
+                            ("analytic composite, J-lay", c),
+                            ("analytic piecewise, J-lay", t["piecewise"]),
                             ("BVP, J-lay (tolerance 1e-6)", t["bvp"]), ("BVP, matched", bm),
                             ("VFIFE, matched, 1 m elements", vmed))]
     return ["## Cost", "", md_table(["solve", "wall time [ms]", "x composite"], rows), "",
             "Per solve: the analytic models and the J-lay BVP on the base case, the best of "
             "repeated solves (as timeit: the least disturbed); the matched BVP and VFIFE, medians over the "
-            f"{len(q['solved'])} cases. The composite is {t['bvp'] / c:.0f}x faster than the "
-            f"J-lay BVP and {vmed / c:.0f}x faster than the VFIFE (itself {vmed / bm:.0f}x the "
-            "matched BVP).", ""]
+            f"{len(q['solved'])} cases. The composite is {timed(t['bvp'] / c, '.0f', 'x')} "
+            f"faster than the J-lay BVP and {timed(vmed / c, '.0f', 'x')} faster than the VFIFE "
+            f"(itself {timed(vmed / bm, '.0f', 'x')} the matched BVP).", ""]
 
 
 def write_report(q: dict, out: Path, note: str) -> None:
@@ -401,7 +401,7 @@ def write_report(q: dict, out: Path, note: str) -> None:
               for m, ws in sv.warnings.items() for w in ws]
     if warned:
         lines += ["Warnings of the case solves: " + "; ".join(warned) + ".", ""]
-    lines += [f"The study took {timed(q['total'], '.1f')} in all." + (f" {note}" * bool(note)), "",
+    lines += [f"The study took {timed(q['total'], '.1f')} in all." + (f" {note}" if note else ""), "",
               "## Figures", "", "![base case](base.png)", "", "![matched model](matched.png)",
               "", "![families](families.png)", "", "![epsilon scaling](epsilon.png)", "",
               "## Files", "",
