@@ -35,7 +35,7 @@ from .catenary import catenary_state, end_offsets
 from .equations import IF, IM, IT, ITH, IX, IY, NSTATE, BeamModel
 from .guess import BVPFailure
 from .layout import Layout
-from .points import bending_weights, guess_arrays, split_at_points
+from .points import GUESS_LENGTH, bending_weights, guess_arrays, split_at_points
 from .output import grounded_drag
 
 
@@ -212,8 +212,13 @@ def _pinned_form(w, L, dx, dy, on_seabed, k_seabed, split, cat_EA):
         if k_seabed > 0.0:
             # a contact zone of at least a metre ahead of the anchor, else unilateral
             # throughout
+            # a point attachment (bvp/points.py: a piece of GUESS_LENGTH in the guess) on
+            # the grounded part: the contact zone carries no point load, its split start
+            # fails (measured: a clump on the seabed of mooring-clump-weight cost minutes
+            # before the unilateral form); solve the unilateral law throughout at once
+            grounded_point = bool(np.any((L <= GUESS_LENGTH) & (Ls < L)))
             form = ("fixed_liftoff" if split and float(np.sum(L - Ls)) > 1.0
-                    else "fixed_elastic")
+                    and not grounded_point else "fixed_elastic")
             return form, False, None, found
         return "fixed_seabed", True, None, found
     # no touchdown ahead of the anchor: the line may lift off at the anchor, i.e. hang
