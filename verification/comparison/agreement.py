@@ -42,7 +42,7 @@ from verification.quantities import (
     signed_moment,
 )
 
-from .tolerances import tolerance, tolerance_value, unit
+from .tolerances import scene_scales, tolerance, tolerance_value, unit
 
 #: the columns of every agreement.csv; the further columns of a comparison (the analytic
 #: method, a peer) each add ``NAME`` and ``NAME_rel_diff`` after them (.columns)
@@ -57,7 +57,8 @@ MOMENT_ROWS = ("moment", "max_moment", "max_moment_s", "moment_out_of_plane",
 
 def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
               s_shift: float = 0.0, nodal: bool = False,
-              moment_reason: str | None = None, ends=None, points=()) -> list[dict]:
+              moment_reason: str | None = None, ends=None, points=(),
+              scene=None) -> list[dict]:
     """The protocol's rows for two static profiles.
 
     Each row has the :data:`AGREEMENT_COLUMNS` (``abs_diff`` = |VFIFE - BVP|, ``rel_diff``
@@ -79,7 +80,10 @@ def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
     (``anchor_x``, ``anchor_height``). ``points``: the arc lengths [m] of point
     attachments (BVP coordinate), where the tension jumps: the tension row leaves their
     nodes out (the BVP's profile holds one side there, the VFIFE's node the mean of the
-    two), and compares it at every other node."""
+    two), and compares it at every other node. ``scene``: the scene both solved (the matched
+    one); its scales bound the relative tolerances below
+    (:func:`~.tolerances.scene_scales`, with the BVP hang-off tension; issue 44:
+    round-off never fails a row); None: no floors."""
     rows: list[dict] = []
     vf = shifted(vf_prof, s_shift)
     sb, sv = summarize(bvp_prof), summarize(vf)
@@ -87,7 +91,8 @@ def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
     hi = min(bvp_prof.s[-1], vf.s[-1])
     Tmax = max(float(np.max(np.abs(bvp_prof.tension))), 1.0)
     Mmax = max(float(np.max(bvp_prof.moment)), 1e-12)
-    scales = {"depth": depth, "max_tension": Tmax, "max_moment": Mmax}
+    scales = {"depth": depth, "max_tension": Tmax, "max_moment": Mmax, **(
+        scene_scales(scene, sb["hang_off_tension"], depth) if scene is not None else {})}
 
     def add(name, b, v, diff=None, at_s=None, note="", curvature=None, slope=0.0):
         """A row; ``diff`` is the signed difference (default v - b)."""
@@ -173,8 +178,7 @@ def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
     if three_d:
         add("max_moment_out_of_plane", sb["max_moment_out_of_plane"],
             sv["max_moment_out_of_plane"])
-    tol_peak, _ = tolerance_value("max_moment", bvp_value=sb["max_moment"], depth=depth,
-                                  max_tension=Tmax, max_moment=Mmax)
+    tol_peak, _ = tolerance_value("max_moment", bvp_value=sb["max_moment"], **scales)
     off = peak_location_offset(bvp_prof, vf, tol_peak)
     tie = abs(off - (sv["max_moment_s"] - sb["max_moment_s"])) > 1e-6
     add("max_moment_s", sb["max_moment_s"], sv["max_moment_s"], diff=off,

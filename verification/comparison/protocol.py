@@ -174,7 +174,8 @@ def compare(scene: Scene, *, element_length: float | None = None, paper_model: b
     bp, vp = shifted(b.profile, s_shift), shifted(v.profile, s_shift)
     bending = unresolved_bending(matched, b.profile, v.info["element_length"], s_shift)
     rows = agreement(bp, vp, depth, moment_reason=bending, ends=matched.ends,
-                     points=[a.s - s_shift for a in matched.attachments])
+                     points=[a.s - s_shift for a in matched.attachments],
+                     scene=matched)
     comp = Comparison(scene, vf_scene, s_shift, depth, b, v, rows, matched_scene=matched,
                       notes=notes)
     if paper_model:

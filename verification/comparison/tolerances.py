@@ -162,6 +162,43 @@ UNITS = {
 _BASIS_LABEL = {"of_depth": "depth", "of_T_max": "T_max", "of_M_max": "M_max",
                 "rel": "itself"}
 
+# FLOORS (issue 44): a relative tolerance's basis is never below the scene's own scale of
+# the quantity, so that round-off cannot cross it: a vertical TTR without current has
+# moments of 1e-7 N m (BVP) and 4e-10 N m (VFIFE), which "M_max" alone judged -99.6 %.
+# - moment scale w lambda^2 [N m]: w the largest submerged weight per length of the
+#   line's segments [N/m], lambda [m] its bending length, the shorter of the tension
+#   layer sqrt(EI/T) (T the BVP hang-off tension, the line's representative tension)
+#   and the weight layer (EI/w)^(1/3) (the same layers as agreement.unresolved_bending);
+#   the moment that a weight w puts on one bending length. A bent line's M_max exceeds
+#   it (at a touchdown M = EI w / T_h, T_h < T), so the floor bites only where there is
+#   no bending to speak of. On ttr-steel (w = 585 N/m, EI = 2.6e7 N m2, T = 1.6 MN):
+#   lambda = 4.0 m, w lambda^2 = 9.4 kN m; the moment tolerance 47 N m.
+# - tension scale w depth [N]: the weight of a line one depth long (the largest segment
+#   weight): the tension a suspended line carries; floors T_max and a tension row taken
+#   relative to itself (a tension near zero has no relative difference).
+# - length scale: the depth (already the basis of the length rows).
+#: the row kinds whose basis each floor bounds below, by the row's unit
+_FLOORED = {("of_M_max", "N m"): "moment", ("of_T_max", "N"): "tension",
+            ("rel", "N"): "tension"}
+_FLOOR_LABEL = {"moment": "w lambda^2", "tension": "w depth"}
+
+
+def scene_scales(scene, hang_off_tension: float, depth: float) -> dict:
+    """The floors of the relative tolerances of a static comparison of ``scene``:
+    ``{"moment_floor": w lambda^2 [N m], "tension_floor": w depth [N]}`` (module notes,
+    FLOORS) with ``hang_off_tension`` [N] the BVP's, ``depth`` [m] the comparison's."""
+    from riser.sections import segment_properties
+    props = segment_properties(scene)
+    w = max(abs(p.weight) for p in props)
+    EI = max(p.EI for p in props)
+    if not (w > 0.0 and EI > 0.0):
+        return {"moment_floor": 0.0, "tension_floor": 0.0}
+    T = abs(hang_off_tension)
+    lam = (EI / w) ** (1.0 / 3.0)
+    if T > 0.0:
+        lam = min(lam, math.sqrt(EI / T))
+    return {"moment_floor": w * lam * lam, "tension_floor": w * depth}
+
 
 def base_name(name: str) -> str:
     """The tolerance key of a row: digits removed (crest2_height -> crest_height)."""
@@ -196,7 +233,8 @@ def feature_moment_tolerance(max_moment: float, moment_slope: float,
 
 def tolerance(name: str, *, bvp_value: float | None = 0.0, depth: float = 1.0,
               max_tension: float = 1.0, max_moment: float = 1.0,
-              curvature: float | None = None, slope: float = 0.0) -> dict:
+              curvature: float | None = None, slope: float = 0.0,
+              moment_floor: float = 0.0, tension_floor: float = 0.0) -> dict:
     """Tolerance of row ``name`` for a scene with these scales (``curvature`` [1/m]: the
     BVP's at a feature, for its position row; ``slope`` [-]: the BVP's d(lateral)/ds there,
     for its lateral row).
@@ -223,14 +261,21 @@ def tolerance(name: str, *, bvp_value: float | None = 0.0, depth: float = 1.0,
         return {"tol": value, "label": f"{value:g} {u}", "basis": None, "basis_label": ""}
     basis = {"of_depth": depth, "of_T_max": max_tension, "of_M_max": max_moment,
              "rel": abs(bvp_value or 0.0)}[kind]
-    return {"tol": value * basis, "label": f"{100 * value:g} % of {_BASIS_LABEL[kind]}",
-            "basis": basis if basis else None, "basis_label": _BASIS_LABEL[kind]}
+    label = _BASIS_LABEL[kind]
+    floor_kind = _FLOORED.get((kind, u))
+    floor = {"moment": moment_floor, "tension": tension_floor}.get(floor_kind, 0.0)
+    if floor > basis:                   # the scene's scale: round-off cannot cross it
+        basis, label = floor, f"{_FLOOR_LABEL[floor_kind]} = {floor:.3g} {u} (floor)"
+    return {"tol": value * basis, "label": f"{100 * value:g} % of {label}",
+            "basis": basis if basis else None,
+            "basis_label": _FLOOR_LABEL[floor_kind] if label.endswith("(floor)")
+            else label}
 
 
 def tolerance_value(name: str, *, bvp_value: float = 0.0, depth: float = 1.0,
                     max_tension: float = 1.0, max_moment: float = 1.0,
-                    curvature: float | None = None) -> tuple[float, str]:
+                    curvature: float | None = None, **floors) -> tuple[float, str]:
     """(absolute tolerance, description) for quantity ``name`` (see :func:`tolerance`)."""
     t = tolerance(name, bvp_value=bvp_value, depth=depth, max_tension=max_tension,
-                  max_moment=max_moment, curvature=curvature)
+                  max_moment=max_moment, curvature=curvature, **floors)
     return t["tol"], t["label"]
