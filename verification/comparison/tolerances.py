@@ -173,19 +173,22 @@ _BASIS_LABEL = {"of_depth": "depth", "of_T_max": "T_max", "of_M_max": "M_max",
 #   it (at a touchdown M = EI w / T_h, T_h < T), so the floor bites only where there is
 #   no bending to speak of. On ttr-steel (w = 585 N/m, EI = 2.6e7 N m2, T = 1.6 MN):
 #   lambda = 4.0 m, w lambda^2 = 9.4 kN m; the moment tolerance 47 N m.
-# - tension scale w depth [N]: the weight of a line one depth long (the largest segment
-#   weight): the tension a suspended line carries; floors T_max and a tension row taken
-#   relative to itself (a tension near zero has no relative difference).
+# - tension scale w_net depth [N]: w_net the line's net submerged weight over its length
+#   (buoyancy modules count against it): the weight of a line one depth long, the tension
+#   a suspended line carries; floors T_max and a tension row taken relative to itself (a
+#   tension near zero has no relative difference). The net, not the largest, weight: with
+#   the largest, a lazy wave's floor exceeded its T_max (yu2021-a1: 2.4x the measured
+#   tolerance), and a floor must not loosen a row whose own basis is sound.
 # - length scale: the depth (already the basis of the length rows).
 #: the row kinds whose basis each floor bounds below, by the row's unit
 _FLOORED = {("of_M_max", "N m"): "moment", ("of_T_max", "N"): "tension",
             ("rel", "N"): "tension"}
-_FLOOR_LABEL = {"moment": "w lambda^2", "tension": "w depth"}
+_FLOOR_LABEL = {"moment": "w lambda^2", "tension": "w_net depth"}
 
 
 def scene_scales(scene, hang_off_tension: float, depth: float) -> dict:
     """The floors of the relative tolerances of a static comparison of ``scene``:
-    ``{"moment_floor": w lambda^2 [N m], "tension_floor": w depth [N]}`` (module notes,
+    ``{"moment_floor": w lambda^2 [N m], "tension_floor": w_net depth [N]}`` (module notes,
     FLOORS) with ``hang_off_tension`` [N] the BVP's, ``depth`` [m] the comparison's."""
     from riser.sections import segment_properties
     props = segment_properties(scene)
@@ -197,7 +200,8 @@ def scene_scales(scene, hang_off_tension: float, depth: float) -> dict:
     lam = (EI / w) ** (1.0 / 3.0)
     if T > 0.0:
         lam = min(lam, math.sqrt(EI / T))
-    return {"moment_floor": w * lam * lam, "tension_floor": w * depth}
+    w_net = abs(sum(p.weight * p.length for p in props)) / sum(p.length for p in props)
+    return {"moment_floor": w * lam * lam, "tension_floor": w_net * depth}
 
 
 def base_name(name: str) -> str:
