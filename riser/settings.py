@@ -128,5 +128,5 @@ class VFIFESettings(_Settings):
                                                       "start is unusable (0: off)")
     static_newton: bool = spec(True, "boolean", table=EXPERT,
                                doc="solve the finer meshes of a statics by Newton's "
-                                   "method (without seabed friction; false: relax every "
-                                   "mesh of the sequence)")
+                                   "method (relaxed where seabed friction is engaged; "
+                                   "false: relax every mesh of the sequence)")
