@@ -198,12 +198,12 @@ def test_same_dynamic_time_series(name):
     for k in ("time", "hang_off_x", "hang_off_y", "hang_off_z"):      # prescribed: copies
         np.testing.assert_array_equal(ts_p[k], ts_3[k], err_msg=k)
     for k, e in ip["envelope"].items():
-        assert rel(e, i3["envelope"][k], scale(e)) <= TOL, k
+        assert rel(e, i3["envelope"][k], max(scale(e), 1e-300)) <= TOL, k
     st_p, st_3 = ip["states"], i3["states"]
     assert rel(np.asarray(st_p["x"])[..., :2], np.asarray(st_3["x"])[..., :2],
                LENGTH) <= POSITION_TOL
     for k in ("v", "tension", "moment"):
-        assert rel(st_p[k], st_3[k], scale(st_p[k])) <= TOL, k
+        assert rel(st_p[k], st_3[k], max(scale(st_p[k]), 1e-300)) <= TOL, k
     assert rel(dp.X[:2], d3.X[:2], LENGTH) <= POSITION_TOL
 
 
