@@ -49,6 +49,11 @@ def check_sea_state(scene) -> None:
     if waves is None:
         raise err("vessel", "needs [environment.waves] (the vessel moves with the waves "
                   "through its RAOs)")
+    if not hasattr(scene.ends, "hang_off_point"):
+        raise err("vessel", "needs fixed ends ([ends] anchor + hang_off): with "
+                  f"the {scene.ends.kind} form the hang-off's position is an output of the static "
+                  "solve, and the RAO motion's wave phases need it before solving (give "
+                  "[dynamics.top_motion] instead, or the static hang-off as ends.hang_off)")
     tm = scene.dynamics.top_motion if scene.dynamics is not None else None
     if tm is not None:
         raise err("dynamics.top_motion", "not with [vessel]: the vessel's RAOs move the "

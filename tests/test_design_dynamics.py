@@ -238,3 +238,31 @@ def test_harmonic_cycle_utilisation_by_hand():
     hand = dnv_f201.utilisation(sc.design, wall_at(sc, s), 0.0, p_e, 1.1 * np.abs(M0),
                                 1.1 * T0 + 1.3 * 5e4)
     np.testing.assert_allclose(cyc["utilisation"], hand, rtol=1e-12)
+
+
+def test_fatigue_by_two_methods_refuses_a_line_without_a_seabed():
+    # the report's stations are the touchdown zone and the hang-off: a scene without a
+    # [seabed] (a mid-water span, a TTR on a wellhead) has no touchdown; it was a KeyError
+    # in the report after the whole scatter diagram. Now refused before solving, naming
+    # the key
+    from riser.errors import SceneError
+    from verification.studies.design.fatigue import require_fatigue
+    sea = """
+[environment.waves]
+[environment.waves.spectrum]
+kind = "jonswap"
+hs = 2.0
+tp = 9.0
+[[design.fatigue.sea_states]]
+hs = 2.0
+tp = 9.0
+probability = 1.0
+"""
+    text = LINE + FATIGUE + sea
+    start = text.index("[seabed]")
+    end = text.index("\n[", start + 1)
+    sc = parse_scene(text[:start] + text[end + 1:])
+    assert sc.seabed is None
+    with pytest.raises(SceneError) as exc:
+        require_fatigue(sc)
+    assert exc.value.key == "seabed"

@@ -285,3 +285,20 @@ def test_steep_fatigue_sea_state_names_its_cell(tmp_path, capsys):
     line = refusal(data, tmp_path, capsys)
     assert "design.fatigue.sea_states[1].tp" in line and "2.31" in line, line
     assert "<WaveSpectrum>" not in line
+
+
+@pytest.mark.parametrize("form", ["kang2015-jlay.toml", "wang2014-baseline.toml"])
+def test_vessel_on_ends_whose_hang_off_is_an_output_is_refused(form, tmp_path, capsys):
+    """The slow fuzz's finding: a [vessel] grafted on the J-lay form (top_tension) ended
+    in an AttributeError traceback, the RAO path's wave phases needing the hang-off's x
+    that only the static solve gives. Now exit 2 naming ``vessel`` and the form."""
+    data = load(form)
+    env = data.setdefault("environment", {})
+    env.setdefault("water_depth", 1000.0)       # wang2014-baseline has none; its line
+    #                                             reaches ~400 m up, well below
+    data["environment"]["waves"] = {"trains": [{"height": 2.0, "period": 10.0,
+                                                "heading_deg": 0.0}]}
+    data["vessel"] = {"heading_deg": 0.0, "hang_off_on_vessel": [0.0, 0.0, 0.0],
+                      "raos": [rao_table(heave=0.5)]}
+    line = refusal(data, tmp_path, capsys)
+    assert line.split(": ")[2] == "vessel" and "needs fixed ends" in line, line

@@ -209,6 +209,9 @@ def test_cli_prints_no_progress_when_stderr_is_not_a_terminal(run_cli, tmp_path)
 
 def test_cli_draws_on_a_terminal_unless_quiet(run_cli, tmp_path, monkeypatch):
     monkeypatch.setattr(pg, "_isatty", lambda stream: True)   # capsys' stderr as a terminal
+    # a wide terminal: the line is cut to the terminal's width (80 columns under a test
+    # runner's worker, which would cut the message asserted below)
+    monkeypatch.setenv("COLUMNS", "200")
     scene = short_dynamic_scene(tmp_path)
     argv = ["solve", str(scene), "--method", "vfife", "--out", str(tmp_path / "o")]
     code, out, err = run_cli(argv)

@@ -18,6 +18,7 @@ import textwrap
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 import builders
 
@@ -92,6 +93,7 @@ def _differences(a: dict, b: dict) -> dict:
     return out
 
 
+@pytest.mark.slow            # ~55 s (a cold compilation); the next test is the fast check
 def test_cold_and_warm_numba_cache_give_the_same_bits(tmp_path):
     """A fresh process compiling the kernels (cold cache) and one loading them from the
     cache it wrote (warm) give bitwise-equal statics and dynamics, planar and 3D.

@@ -26,7 +26,8 @@ try:                             # Ctrl-C while the program loads (numpy): one l
 
     from riser.errors import SceneError, SolveFailed, UnsupportedSceneError
     from verification import peers
-    from verification.runtime.interrupts import exit_quietly_on_interrupt, reraise_interrupt
+    from verification.runtime.interrupts import (exit_quietly_on_interrupt,
+                                                 keep_swallowed_interrupts, reraise_interrupt)
 
     from . import bench, compare, design, solve, studies, sweep
     from .common import QUIET_HELP, Parser, err
@@ -57,6 +58,7 @@ def main(argv: list[str] | None = None) -> int:
     """Run ``riser-verify ARGV`` (None: the program's own arguments, and then a Ctrl-C
     while the interpreter exits ends it at once with 130, no traceback); the exit code."""
     try:
+        keep_swallowed_interrupts()
         code = _run(argv)
     except KeyboardInterrupt as exc:     # the message says what was kept (sweep)
         if argv is None:                 # a second Ctrl-C now: 130 at once, no traceback

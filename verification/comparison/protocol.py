@@ -35,6 +35,7 @@ from riser.errors import SolveFailed
 from riser.scene import FixedEnds, Scene
 from verification.pipeline import shifted, vfife_equivalent
 from verification.quantities import reference_depth
+from verification.runtime.interrupts import reraise_interrupt
 
 from .agreement import AGREEMENT_COLUMNS, agreement, unresolved_bending
 from .analytic_column import AnalyticColumn
@@ -184,6 +185,7 @@ def compare(scene: Scene, *, element_length: float | None = None, paper_model: b
                 now("bvp: solving the paper model (secondary comparison)")
                 paper = bvp.solve(paper_model_scene(scene))
             except Exception as exc:       # the paper model may not be able to represent it
+                reraise_interrupt(exc)     # but a Ctrl-C (in Numba) stops the comparison
                 notes.append(f"The paper model could not be set up: {exc}")
                 paper = None
             say(f"{scene.name}: paper-model BVP "

@@ -47,8 +47,9 @@ def _main_thread() -> bool:
 
 @contextlib.contextmanager
 def held_interrupts():
-    """Ctrl-C is noted, not raised, in the block; raised as ``KeyboardInterrupt`` at its
-    end (when the handler before it raised one). Outside the main thread: nothing."""
+    """Ctrl-C is noted, not raised, in the block; at its end handed to the handler before
+    it (``KeyboardInterrupt`` for Python's default one; an enclosing hold notes it in its
+    turn). Outside the main thread: nothing."""
     if not _main_thread():
         yield
         return
@@ -60,6 +61,8 @@ def held_interrupts():
         signal.signal(signal.SIGINT, previous)
         if got and previous is signal.default_int_handler:
             raise KeyboardInterrupt
+        if got and callable(previous):           # an enclosing hold (or the exit's
+            previous(signal.SIGINT, None)        # handler) is told: never dropped
 
 
 @contextlib.contextmanager
@@ -111,6 +114,37 @@ def reraise_interrupt(exc: BaseException) -> None:
     ``Exception`` that would record the error and go on."""
     if caused_by_interrupt(exc):
         raise KeyboardInterrupt from None
+
+
+#: seconds after a swallowed Ctrl-C that it is raised again (:func:`keep_swallowed_interrupts`)
+RERAISE_DELAY_S = 0.01
+
+
+def keep_swallowed_interrupts() -> None:
+    """A Ctrl-C that lands in code whose exceptions Python cannot raise (a ``__del__``,
+    a weakref or garbage-collector callback: "Exception ignored in ... KeyboardInterrupt")
+    is raised again in the main thread a moment later (:func:`_thread.interrupt_main`
+    from a timer thread: the signal's own path) instead of being printed and lost: the run ends in exit 130, not in exit 0
+    after finishing as if nothing came (measured once in 50 interrupts of a dynamic
+    solve on a loaded machine, and a fatigue run that went on past 120 s). Other
+    unraisable exceptions go to the hook in place before. Idempotent."""
+    previous = sys.unraisablehook
+    if getattr(previous, "_keeps_interrupts", False):
+        return
+
+    def hook(unraisable):
+        if isinstance(unraisable.exc_value, KeyboardInterrupt) or (
+                unraisable.exc_type is not None
+                and issubclass(unraisable.exc_type, KeyboardInterrupt)):
+            # raised from here it would be ignored again: a thread raises it a moment
+            # later, once the main thread is back in code that can raise (should it land
+            # in such code again, this hook comes again)
+            import _thread
+            threading.Timer(RERAISE_DELAY_S, _thread.interrupt_main).start()
+            return
+        previous(unraisable)
+    hook._keeps_interrupts = True
+    sys.unraisablehook = hook
 
 
 def exit_quietly_on_interrupt(said: bool) -> None:

@@ -37,6 +37,7 @@ from verification.comparison.agreement import agreement, unresolved_bending
 from verification.pipeline import solve_scene
 from verification.quantities import reference_depth
 from verification.report.markdown import GENERATED_NOTE, fmt, md_table, timed
+from verification.runtime.interrupts import reraise_interrupt
 from verification.runtime.progress import scoped
 
 from .study import Study
@@ -75,6 +76,7 @@ def run_one(name: str, method: str, progress=None) -> tuple[dict, object]:
     except SolveFailed as exc:
         row.update(outcome=OUTCOME[exc.status], message=str(exc))
     except Exception as exc:                       # noqa: BLE001 - the point is to catch it
+        reraise_interrupt(exc)                     # a Ctrl-C (in Numba) is no outcome
         row.update(outcome="SILENT FAILURE",
                    message=f"exception {type(exc).__name__}: {exc} "
                            f"({traceback.format_exc(limit=2).splitlines()[-1]})")

@@ -14,6 +14,7 @@ from riser.io.moordyn.deck_from_scene import ExportedDeck, export_scene
 from riser.io.moordyn.waves import WAVE_FILE
 from riser.scene import FixedEnds, Scene
 from verification import pipeline
+from verification.runtime.interrupts import reraise_interrupt
 
 
 def check_segment_length(value: float | None, option: str, scene) -> None:
@@ -66,6 +67,7 @@ def joint_guess(scene: Scene, spans, profile=None) -> tuple[list | None, str]:
         try:
             res = pipeline.solve_scene(scene, method)
         except Exception as exc:    # noqa: BLE001 - only MoorDyn's first guess depends on it
+            reraise_interrupt(exc)  # a Ctrl-C (in Numba) stops the export
             return None, f"the chord (the {method.upper()} failed: {exc})"
         if not res.converged:
             return None, (f"the chord (the {method.upper()} did not converge: "

@@ -35,7 +35,7 @@ from riser.design.fatigue import SECONDS_PER_YEAR, spectral, stress_transfer
 from riser.design.rainflow_damage import series_damage
 from riser.design.sn_curves import sn_curve
 from riser.design.wall import wall_at
-from riser.errors import SceneError
+from riser.errors import SceneError, UnsupportedSceneError
 from riser.hang_off_motion import scene_components
 from verification.comparison.sea_dynamics import compare_sea
 
@@ -96,6 +96,10 @@ def require_fatigue(scene) -> None:
             scene.waves.spectrum.kind == "table":
         raise SceneError(scene.source, "environment.waves.spectrum", "required: a JONSWAP "
                          "or Pierson-Moskowitz spectrum (each sea state sets its hs and tp)")
+    if scene.seabed_model is None:
+        raise SceneError(scene.source, "seabed", "required: the fatigue by two methods "
+                         "reports the touchdown zone and the hang-off (a line without a "
+                         "[seabed] has no touchdown)")
     oop = scene.out_of_plane()
     if oop is not None:
         raise SceneError(scene.source, oop[0], f"the fatigue by two methods takes a planar "
@@ -176,6 +180,10 @@ def run_scatter(scene, element_length: float | None = None, progress=None) -> Sc
         if progress is not None:
             progress(f"sea state {k + 1}/{len(cells)}: Hs {cell.hs:g} m, Tp {cell.tp:g} s")
         states.append(run_sea_state(scene, cell, element_length, progress))
+        if states[0].tdp_s is None:
+            raise UnsupportedSceneError(f"{scene.source}: the static line does not touch "
+                                        "the seabed: the fatigue by two methods reports "
+                                        "the touchdown zone and the hang-off")
     s = states[0].s
     per_year = {e: sum(st.probability * np.interp(s, st.s, st.rates[e]) for st in states)
                 * SECONDS_PER_YEAR for e in ESTIMATES}
