@@ -46,7 +46,8 @@ class AnalyticColumn:
             return ColumnResult(self, res, note=f"The analytic method ended in "
                                 f"{res.status.value}: {res.message}.")
         profile = shifted(res.profile, comp.s_shift)
-        rows = agreement(shifted(comp.bvp.profile, comp.s_shift), profile, comp.depth)
+        rows = agreement(shifted(comp.bvp.profile, comp.s_shift), profile, comp.depth,
+                         scene=comp.matched_scene)
         i = res.info
         return ColumnResult(
             self, res, profile, verdict_values(comp.rows, rows), rows,

@@ -160,7 +160,7 @@ def run(out_dir: str | Path = "reports/stress", names: list[str] | None = None, 
             sc = resolve(name)
             bending = unresolved_bending(sc, b.profile, v.info["element_length"])
             agr = agreement(b.profile, v.profile, reference_depth(sc, b.summary()),
-                            moment_reason=bending)
+                            moment_reason=bending, scene=sc)
             text = agreement_text(agr, v.warnings)
             for r in rows[-2:]:
                 r["agreement"] = text

@@ -97,7 +97,7 @@ def _agreement(scene, results: dict) -> dict:
     depth = reference_depth(scene, b.summary())
     bending = unresolved_bending(scene, b.profile, v.info["element_length"])
     rows = agreement(b.profile, v.profile, depth, moment_reason=bending,
-                     ends=scene.ends, points=[a.s for a in scene.attachments])
+                     ends=scene.ends, points=[a.s for a in scene.attachments], scene=scene)
     keep = ("quantity", "bvp", "vfife", "diff", "rel_diff", "tolerance", "pass", "at_s",
             "basis_label", "tol_label", "note")
     rows = [{k: (r.get(k).item() if isinstance(r.get(k), np.generic) else r.get(k))

@@ -118,6 +118,8 @@ def tolerance(row: dict, h: float) -> tuple[float | None, str, str]:
     if not basis:
         return None, "", why
     label = {"of_depth": "depth", "of_T_max": "T_max", "of_M_max": "M_max", "rel": "itself"}
+    if kind != "rel" and row.get("basis_label"):     # a floor in place of T_max, M_max
+        label[kind] = row["basis_label"]
     return value * basis, f"{100 * value:g} % of {label[kind]}", why
 
 
@@ -146,7 +148,9 @@ class MoorDynColumn:
         if peer.profile is None:
             return ColumnResult(self, peer, note=peer.message, ok=peer.converged)
         vf = {r["quantity"]: r for r in comp.rows}
-        own = agreement(rp, peer.profile, comp.depth, nodal=True)
+        # the scene's floors of the relative rows' bases (issue 44: round-off never FAILs)
+        own = agreement(rp, peer.profile, comp.depth, nodal=True,
+                        scene=comp.matched_scene)
         rows = []
         have = {r["quantity"] for r in own}
         extra = [r for r in lateral_rows(rp, peer.profile, comp.depth)
