@@ -26,7 +26,8 @@ import pandas as pd
 
 from bvp.harmonic import transfer_sweep
 from verification.report.figures import new_figure, save
-from verification.report.markdown import GENERATED_NOTE, fmt, md_table, pct, timed
+from verification.report.markdown import GENERATED_NOTE, fmt, md_table, pct_step, timed
+from verification.runtime.stable import DYNAMIC_SIGNIFICANT, QUANTA
 
 from .dynamic_rows import DRIFT_LIMIT, TOLERANCES
 from .dynamics import (ORBIT, RAMP_PERIODS, SETTLE_PERIODS, WAVE, WINDOW_PERIODS,
@@ -173,23 +174,23 @@ def markdown(dc: DynamicComparison, static_markdown: str = "", peer_markdown: st
         lines.append(md_table(
             ["quantity", "FD", "VFIFE", "VFIFE vs FD", "at s [m]", "tolerance", "basis",
              "pass"],
-            [(f"`{w['quantity']}`", w["fd"], w["vfife"], _rel(w), w["s"], w["tolerance"],
-              w["basis"], PASS_WORD[w["pass"]]) for w in r.rows]))
+            [(f"`{w['quantity']}`", _dyn(w["fd"]), _dyn(w["vfife"]), _rel(w), w["s"],
+              w["tolerance"], w["basis"], PASS_WORD[w["pass"]]) for w in r.rows]))
         lines += ["", md_table(["station", "s [m]", "FD tension amplitude [N]",
                                 "VFIFE [N]", "relative", "phase VFIFE - FD [deg]"],
-                               [(st["station"], st["s"], st["fd_amplitude"],
-                                 st["vfife_amplitude"], pct(st["rel_diff"]),
-                                 fmt(st["phase_diff_deg"], 3)) for st in r.stations]), ""]
+                               [(st["station"], st["s"], _dyn(st["fd_amplitude"]),
+                                 _dyn(st["vfife_amplitude"]), pct_step(st["rel_diff"], _STEP),
+                                 _deg(st["phase_diff_deg"])) for st in r.stations]), ""]
         nl = r.nonlinearity
         zone = nl["contact_zone"]
         where = ("at the hang-off" if nl["quantity"] == "tension"
                  else "where it is largest")
         lines += [f"Nonlinearity measured on the VFIFE's {_QUANTITY[nl['quantity']]}: "
-                  f"higher harmonics {pct(nl['hang_off_higher_harmonics'], 2)} of the first "
-                  f"{where} (at worst {pct(nl['max_higher_harmonics'], 2)} along s where the "
+                  f"higher harmonics {pct_step(nl['hang_off_higher_harmonics'], _STEP)} of the first "
+                  f"{where} (at worst {pct_step(nl['max_higher_harmonics'], _STEP)} along s where the "
                   "first harmonic is a tenth of its peak or more); envelope / first harmonic "
-                  f"{fmt(nl['hang_off_envelope_ratio'], 4)} {where}; window drift "
-                  f"{pct(nl['window_drift'], 2)} after {nl['settle_periods']} periods of "
+                  f"{fmt(nl['hang_off_envelope_ratio'], DYNAMIC_SIGNIFICANT)} {where}; window drift "
+                  f"{pct_step(nl['window_drift'], _STEP)} after {nl['settle_periods']} periods of "
                   "settling"
                   + (f"; contact zone s = {zone[0]:.1f} to {zone[1]:.1f} m" if zone else "")
                   + ".", ""]
@@ -210,12 +211,29 @@ def markdown(dc: DynamicComparison, static_markdown: str = "", peer_markdown: st
     return "\n".join(lines)
 
 
+#: the step of a dynamic relative difference and of a phase [deg] in the text: the
+#: quanta of dynamic_agreement.csv (another CPU moves a dynamic response in its 5th digit)
+_STEP = QUANTA["dynamic_agreement.csv"]["rel_diff"]
+_DEG_STEP = 0.05
+
+
+def _dyn(value):
+    """A dynamic response's value to the digits its CSV holds."""
+    return value if not isinstance(value, float) else fmt(value, DYNAMIC_SIGNIFICANT)
+
+
+def _deg(value) -> str:
+    if value is None:
+        return ""
+    return f"{round(value / _DEG_STEP) * _DEG_STEP:+.2f}"
+
+
 def _rel(w: dict) -> str:
     if w["rel_diff"] is None:
         return ""
     if w["quantity"].endswith("_deg"):
-        return f"{w['rel_diff']:+.3f} deg"
-    return pct(w["rel_diff"])
+        return f"{_deg(w['rel_diff'])} deg"
+    return pct_step(w["rel_diff"], _STEP)
 
 
 def _plots(dc: DynamicComparison, tables: dict, out: Path) -> None:

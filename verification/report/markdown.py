@@ -61,6 +61,18 @@ def pct(value, digits: int = 3) -> str:
     return f"{100.0 * value:+.{digits}f} %"
 
 
+def pct_step(value, step: float) -> str:
+    """A relative value as a signed percentage rounded to a multiple of ``step`` (the
+    quantum of its column in the CSV files, :data:`verification.runtime.stable.QUANTA`;
+    5e-4 for a dynamic agreement): the text moves no more than the file does on another
+    CPU."""
+    if value is None or (isinstance(value, float) and not math.isfinite(value)):
+        return ""
+    q = round(value / step) * step
+    digits = max(0, -math.floor(math.log10(100.0 * step) + 1e-9))
+    return f"{100.0 * q:+.{digits}f} %"
+
+
 def md_table(header: Sequence[str], rows: Iterable[Sequence]) -> str:
     """A GitHub-flavoured Markdown table; cells are formatted with :func:`fmt`."""
     lines = ["| " + " | ".join(header) + " |", "|" + "|".join("---" for _ in header) + "|"]
