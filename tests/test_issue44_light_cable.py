@@ -90,3 +90,27 @@ def test_a_touchdown_with_friction_is_relaxed():
     assert len(stages) > 1
     assert not any("newton_iterations" in st for st in stages), stages
     assert all(st["steps"] > 0 for st in stages)
+
+
+@pytest.mark.slow
+def test_light_cable_dynamic_comparison_passes_at_the_advised_length_and_small_amplitude():
+    # the issue's `compare --dynamics` of the light cable. Measured (issue 44): at the
+    # tester's 0.5 m elements and 0.5 m heave the moment amplitude (0.76 N m, its peak at
+    # mid-span) is 2.17 % apart, and 2.17 % again at the advised 0.23 m: not the mesh but
+    # the FD's linearised drag (the VFIFE's higher harmonics reach 7.2 % of the first along
+    # s), which the protocol judges at the sweep's smallest amplitude only. At 0.1 m heave
+    # and the element length the resolution warning advises (0.5 sqrt(EI/T) = 0.23 m; the
+    # 0.5 m elements left the top's moment layer 1.3 % off) every row passes (moment 0.29
+    # %, tension 5e-5). Independent source: the frequency domain about the BVP's statics.
+    # ~5 min (the VFIFE's 0.23 m elements over 24 periods)
+    from verification.comparison.dynamics import compare_dynamics
+    sc = resolve(str(FIXTURE))
+    v = vfife.solve(_static(sc))
+    advice = [w for w in v.warnings if "moment peaks" in w]
+    assert len(advice) == 1, v.warnings
+    h = float(advice[0].split("use <= ")[1].split(" m")[0])
+    assert h == pytest.approx(0.23, abs=0.005)
+    comp = compare_dynamics(sc, amplitudes=(0.1,), element_length=h)
+    bad = [(r["quantity"], r["rel_diff"]) for res in comp.results for r in res.rows
+           if r["pass"] is False]
+    assert comp.passed, bad
