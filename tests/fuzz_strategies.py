@@ -313,6 +313,19 @@ def read_outcome(tally: Tally, inp: Input, read: Callable[[], Any], *, budget: f
 
 
 # ============================================================================ invariants
+def read_written(tally: Tally, inp: Input, folder: Path):
+    """Write ``inp``'s text to ``folder``/scene.toml and read it as ``riser-verify``
+    would (:func:`read_outcome`, then :func:`check_scene`): the Scene, or None when it was
+    refused (or a finding)."""
+    from verification.catalog import resolve
+    path = folder / "scene.toml"
+    path.write_text(inp.text, encoding="utf-8")
+    scene = read_outcome(tally, inp, lambda: resolve(str(path)))
+    if scene is None or not check_scene(tally, scene, inp):
+        return None
+    return scene
+
+
 def nonfinite_path(obj: Any, path: str = "", depth: int = 0) -> str | None:
     """The path of the first NaN or inf in a scene (dataclasses, tuples, dicts, arrays)."""
     if depth > 12:
@@ -938,6 +951,11 @@ def apply_text_ops(draw, text: str, ops: list[str]) -> tuple[str, list[str], str
             text = text[:i]
             steps.append(f"truncated to {i} characters")
     return text, steps, must
+
+
+#: the fuzzers' seeds: the built-in scenes and the examples' scenes
+SEED_PATHS = sorted([*(ROOT / "verification" / "scenes").rglob("*.toml"),
+                     *(ROOT / "examples" / "scenes").glob("*.toml")])
 
 
 def seed_dicts(paths) -> dict[str, dict]:

@@ -37,6 +37,7 @@ import time
 from pathlib import Path
 
 import pytest
+from processes import left_in_session
 
 from verification import cli
 from verification.cli.common import Range, check_ranges
@@ -221,13 +222,7 @@ def _interrupt(tmp_path: Path, delay: float, group: bool, n: int = 8) -> None:
         if m:
             written = len(list((out / "cases").glob("*/case.json")))
             assert (int(m[1]), int(m[2]), m[3]) == (written, n, str(out)), (line, written)
-    deadline = time.monotonic() + 10.0           # the resource tracker ends on its own
-    while True:
-        left = subprocess.run(["pgrep", "-s", str(p.pid)], capture_output=True,
-                              text=True).stdout.split()
-        if not left or time.monotonic() > deadline:
-            break
-        time.sleep(0.2)
+    left = left_in_session(p.pid)
     assert not left, f"processes left after the interrupt: {left}"
 
 

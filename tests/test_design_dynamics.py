@@ -195,23 +195,20 @@ def test_cli_fatigue_without_sea_states_is_one_line_exit_2(tmp_path):
     assert len(lines) == 1 and "design.fatigue.sea_states" in lines[0]
 
 
+def sea_state(spectrum_keys: str = "") -> str:
+    """A JONSWAP sea (Hs 2 m, Tp 9 s, further spectrum keys as given) and its one cell of
+    the scatter diagram (TOML)."""
+    return ("\n[environment.waves]\n[environment.waves.spectrum]\nkind = \"jonswap\"\n"
+            f"hs = 2.0\ntp = 9.0\n{spectrum_keys}[[design.fatigue.sea_states]]\nhs = 2.0\n"
+            "tp = 9.0\nprobability = 1.0\n")
+
+
 def test_fatigue_by_two_methods_refuses_a_3d_sea():
     # the FD's sea response carries the in-plane moment only: an oblique sea is refused
     # before solving, never counted without its out-of-plane bending
     from riser.errors import SceneError
     from verification.studies.design.fatigue import require_fatigue
-    sea = """
-[environment.waves]
-[environment.waves.spectrum]
-kind = "jonswap"
-hs = 2.0
-tp = 9.0
-heading_deg = 30.0
-[[design.fatigue.sea_states]]
-hs = 2.0
-tp = 9.0
-probability = 1.0
-"""
+    sea = sea_state("heading_deg = 30.0\n")
     sc = parse_scene(LINE + FATIGUE + sea)
     with pytest.raises(SceneError) as exc:
         require_fatigue(sc)
@@ -247,18 +244,7 @@ def test_fatigue_by_two_methods_refuses_a_line_without_a_seabed():
     # the key
     from riser.errors import SceneError
     from verification.studies.design.fatigue import require_fatigue
-    sea = """
-[environment.waves]
-[environment.waves.spectrum]
-kind = "jonswap"
-hs = 2.0
-tp = 9.0
-[[design.fatigue.sea_states]]
-hs = 2.0
-tp = 9.0
-probability = 1.0
-"""
-    text = LINE + FATIGUE + sea
+    text = LINE + FATIGUE + sea_state()
     start = text.index("[seabed]")
     end = text.index("\n[", start + 1)
     sc = parse_scene(text[:start] + text[end + 1:])

@@ -34,7 +34,7 @@ import numpy as np
 import pytest
 from fuzz_strategies import (
     MAX_LENGTH,
-    ROOT,
+    SEED_PATHS,
     PROJECT_ERRORS,
     Input,
     Mutated,
@@ -44,9 +44,8 @@ from fuzz_strategies import (
     _where,
     apply_text_ops,
     check_refusal,
-    check_scene,
     mutate_dict,
-    read_outcome,
+    read_written,
     run_fuzz,
     scale,
     seed_dicts,
@@ -60,8 +59,6 @@ from hypothesis import strategies as st
 from riser.scene import FixedEnds
 from verification.catalog import resolve
 
-SEED_PATHS = sorted([*(ROOT / "verification" / "scenes").rglob("*.toml"),
-                     *(ROOT / "examples" / "scenes").glob("*.toml")])
 SEEDS = seed_dicts(SEED_PATHS)
 
 #: the feature tables a seed may carry, by their path in the scene file
@@ -407,10 +404,8 @@ class FeatureFuzz:
         self.static_solved = self.dynamic_solved = 0
 
     def __call__(self, inp: Input) -> None:
-        path = self.dir / "scene.toml"
-        path.write_text(inp.text, encoding="utf-8")
-        scene = read_outcome(self.tally, inp, lambda: resolve(str(path)))
-        if scene is None or not check_scene(self.tally, scene, inp):
+        scene = read_written(self.tally, inp, self.dir)
+        if scene is None:
             return
         self.accepted += 1
         solve_outcome(self.tally, "analytic", scene, inp, budget=20.0)

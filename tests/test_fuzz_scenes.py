@@ -18,15 +18,14 @@ from pathlib import Path
 import pytest
 from fuzz_strategies import (
     MAX_LENGTH,
-    ROOT,
+    SEED_PATHS,
     Input,
     Mutated,
     Tally,
     apply_text_ops,
-    check_scene,
     generated_scene,
     mutate_dict,
-    read_outcome,
+    read_written,
     run_fuzz,
     run_path_fuzz,
     scale,
@@ -39,9 +38,6 @@ from hypothesis import strategies as st
 from riser.scene import FixedEnds
 from verification.catalog import resolve
 
-#: the seeds: the built-in scenes (and the examples' scenes)
-SEED_PATHS = sorted([*(ROOT / "verification" / "scenes").rglob("*.toml"),
-                     *(ROOT / "examples" / "scenes").glob("*.toml")])
 SEEDS = seed_dicts(SEED_PATHS)
 
 
@@ -77,10 +73,8 @@ class SceneFuzz:
         self.solves = {"bvp": (bvp_every, bvp_max), "vfife": (vfife_every, vfife_max)}
 
     def __call__(self, inp: Input) -> None:
-        path = self.dir / "scene.toml"
-        path.write_text(inp.text, encoding="utf-8")
-        scene = read_outcome(self.tally, inp, lambda: resolve(str(path)))
-        if scene is None or not check_scene(self.tally, scene, inp):
+        scene = read_written(self.tally, inp, self.dir)
+        if scene is None:
             return
         self.accepted += 1
         solve_outcome(self.tally, "analytic", scene, inp, budget=20.0)     # milliseconds

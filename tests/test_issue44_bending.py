@@ -171,17 +171,22 @@ def test_titanium_is_not_taken_for_steel():
 
 
 # ----------------------------------------------------------------- dynamics
+def scr_dynamic(tmp_path, height: float, tables: str, duration: float, motion: str = ""):
+    """scr-steel with its hang-off at ``height`` [m], the TOML ``tables`` added, a dynamic
+    run of ``duration`` [s] sampled every 0.5 s (``motion``: further [dynamics] keys) and
+    10 m elements."""
+    return edited(tmp_path, "scr-steel", ("hang_off = [1500.0, 1000.0]",
+                                          f"hang_off = [1500.0, {height}]\n\n{tables}"
+                                          f"[dynamics]\nduration = {duration}\n"
+                                          f"output_interval = 0.5\n{motion}\n"
+                                          "[vfife]\nelement_length = 10.0"))
+
+
 def scr_in_wave(tmp_path):
     # the issue's input: an SCR hung 15 m below the surface in a 30 m / 16 s Airy wave (the
     # trough comes down to the hang-off); 10 m elements and 3 periods: 3 s
-    return edited(tmp_path, "scr-steel", ("hang_off = [1500.0, 1000.0]",
-                                          "hang_off = [1500.0, 985.0]\n\n"
-                                          "[environment.waves]\n"
-                                          "[[environment.waves.trains]]\nheight = 30.0\n"
-                                          "period = 16.0\nheading_deg = 0.0\n\n"
-                                          "[dynamics]\nduration = 48.0\n"
-                                          "output_interval = 0.5\n\n"
-                                          "[vfife]\nelement_length = 10.0"))
+    return scr_dynamic(tmp_path, 985.0, "[environment.waves]\n[[environment.waves.trains]]\n"
+                       "height = 30.0\nperiod = 16.0\nheading_deg = 0.0\n\n", 48.0)
 
 
 def test_scr_hang_off_in_the_trough_above_surface(tmp_path):
@@ -205,12 +210,8 @@ def test_scr_hang_off_in_the_trough_above_surface(tmp_path):
 def scr_heaved(tmp_path):
     # the SCR's hang-off heaved 8 m in 6 s (8.4 m/s down): the line cannot fall as fast,
     # its bottom goes into compression and its top bends hard
-    return edited(tmp_path, "scr-steel", ("hang_off = [1500.0, 1000.0]",
-                                          "hang_off = [1500.0, 990.0]\n\n"
-                                          "[dynamics]\nduration = 24.0\n"
-                                          "output_interval = 0.5\ntop_motion = { axis = "
-                                          "\"y\", amplitude = 8.0, period = 6.0, ramp_time "
-                                          "= 6.0 }\n\n[vfife]\nelement_length = 10.0"))
+    return scr_dynamic(tmp_path, 990.0, "", 24.0, 'top_motion = { axis = "y", amplitude = '
+                       '8.0, period = 6.0, ramp_time = 6.0 }\n')
 
 
 def test_dynamic_compression_and_bending_said_where_and_when(tmp_path):

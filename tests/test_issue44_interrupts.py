@@ -29,6 +29,7 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import pytest
+from processes import left_in_session
 
 from verification.cli import main
 from verification.runtime import engine as engine_mod
@@ -80,13 +81,7 @@ def interrupt_once(argv: list[str], delay: float, out: Path) -> dict:
             with _suppress_lookup():
                 os.killpg(p.pid, signal.SIGKILL)
             p.wait()
-    deadline = time.monotonic() + 10.0          # the resource tracker ends on its own
-    while True:
-        left = subprocess.run(["pgrep", "-s", str(p.pid)], capture_output=True,
-                              text=True).stdout.split()
-        if not left or time.monotonic() > deadline:
-            break
-        time.sleep(0.2)
+    left = left_in_session(p.pid)
     lines = stderr.strip().splitlines()
     ok = (p.returncode == 130 and len(lines) == 1 and lines[0].startswith("error: interrupted")
           and "Traceback" not in stderr and not left)
