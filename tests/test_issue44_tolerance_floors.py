@@ -69,6 +69,19 @@ def test_vertical_ttr_without_current_passes(ttr):
     assert {r["quantity"] for r in old if r["pass"] is False} >= {"moment", "max_moment"}
 
 
+def test_vertical_ttr_passes_at_the_advised_element_length(ttr):
+    # the done-when: the TTR PASSes at the element length the tool recommends too. Its
+    # clamped wellhead asks for 0.15 sqrt(EI/T) there (vfife.solver.HELD_END_FRACTION:
+    # 0.74 m of its 4.96 m layer); at that length: PASS and no advice left
+    advice = [w for w in ttr.vfife.warnings if "clamp at the anchor" in w]
+    assert len(advice) == 1, ttr.vfife.warnings
+    h = float(advice[0].split("use <= ")[1].split(" m")[0])
+    sc = load_scene(FIXTURE)
+    again = compare(sc.replace(**{"vfife.element_length": h}), paper_model=False, columns=[])
+    assert again.passed, [r["quantity"] for r in again.rows if r["pass"] is False]
+    assert not [w for w in again.vfife.warnings if w.startswith("resolution")]
+
+
 def _perturbed(ttr, field, amount):
     """The VFIFE profile with ``field`` moved by ``amount`` over the upper half of the line
     (a real difference, not round-off)."""
