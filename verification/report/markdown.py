@@ -46,7 +46,10 @@ def committed_reports():
 def timed(seconds: float, spec: str = ".2f", unit: str = " s") -> str:
     """A measured wall time [s] for a report: ``f"{seconds:{spec}}{unit}"`` (``unit`` " ms":
     ``seconds`` shown in milliseconds), or :data:`TIMED` inside
-    :func:`committed_reports` (the value kept for ``timings.json``)."""
+    :func:`committed_reports` (the value kept for ``timings.json``); blank for no time
+    (None or NaN: a run that did not happen)."""
+    if seconds is None or not math.isfinite(seconds):
+        return ""
     if _stable["on"]:
         _stable["times"].append(seconds)
         return TIMED

@@ -235,7 +235,8 @@ def _markdown(name, scene, comp, table, conv, note) -> str:
                                  pct(r.get("hang_off_tension_amplitude")),
                                  pct(r.get("tension_amplitude")),
                                  pct(r.get("moment_amplitude")),
-                                 pct(r.get("displacement_amplitude")), r.get("vfife_s"),
+                                 pct(r.get("displacement_amplitude")),
+                                 timed(r.get("vfife_s"), ".1f", ""),
                                  _note(r.get("warnings"))) for _, r in conv.iterrows()]), ""]
         order = _order(conv)
         if order:

@@ -25,7 +25,7 @@ import pandas as pd
 import vfife
 from verification.catalog import resolve
 from verification.report.figures import new_figure, save
-from verification.report.markdown import md_table
+from verification.report.markdown import md_table, timed
 
 #: published hang-off tension [kN] at t_ref = 0.5, 1.5, ..., 29.5 s (see the docstring;
 #: case 4 at 17.5 s is the digitised point at 17.6 s, the figure has none at 17.5 s)
@@ -152,7 +152,7 @@ def _report(df: pd.DataFrame, path: Path, note: str) -> None:
         rows.append((str(r.case), f"{r.heading_deg:g}", r.verdict,
                      f"{r.worst_kN:.2f} at {r.worst_at_t_ref_s:.1f} s",
                      f"{r.mean_published_kN:.2f}", f"{r.mean_vfife_kN:.2f}",
-                     f"{r.wall_s:.1f}"))
+                     timed(r.wall_s, ".1f", "")))
     lines.append(md_table(("case", "heading [deg]", "verdict", "worst |VFIFE - published| "
                            "[kN]", "mean published [kN]", "mean VFIFE [kN]",
                            "VFIFE wall [s]"), rows))
