@@ -15,6 +15,7 @@ from riser.errors import SolveFailed
 from verification.catalog import COMPARE_SCENES, resolve
 from verification.comparison.protocol import compare
 from verification.comparison.report import write
+from verification.runtime.stable import QUANTA
 
 from .study import Study
 
@@ -45,7 +46,13 @@ def index_row(d: Path):
     # "+0.00 %" a fixed two decimals printed (read as no difference at all)
     # a row shown but not judged (the moment of a line whose bending length the elements
     # cannot resolve: a chain) says so
-    text = ", ".join(f"{q} {100.0 * rows.loc[q, 'rel_diff']:+.2g} % {bases[q]}"
+    # a difference below the file's step (agreement.csv's rel_diff on multiples of 1e-6,
+    # verification.runtime.stable.QUANTA) is said to be below it, never "+0 %"
+    step = QUANTA["agreement.csv"]["rel_diff"]
+
+    def pct(v: float) -> str:
+        return f"{100.0 * v:+.2g} %" if v != 0.0 else f"below {100.0 * step:g} %"
+    text = ", ".join(f"{q} {pct(rows.loc[q, 'rel_diff'])} {bases[q]}"
                      + (" (not judged)" if pd.isna(rows.loc[q, "pass"]) else "")
                      for q in bases if q in rows.index)
     if "tdp_x" in rows.index:
