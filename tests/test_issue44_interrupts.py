@@ -130,7 +130,10 @@ def _check(name: str, runs: list[dict]) -> None:
     good = sum(r["ok"] for r in runs)
     print(f"{name}: {good} of {len(runs)} interrupts ended in exit 130 with one line")
     bad = [r for r in runs if not r["ok"]]
-    assert not bad, bad[:3]
+    # each bad run in full (code, delay, processes left, its whole stderr): pytest cuts a
+    # list of dicts to its first keys
+    assert not bad, "\n".join(f"exit {r['code']} at {r['delay']} s, left {r['left']}, "
+                               f"stderr:\n{r['stderr']}" for r in bad[:3])
 
 
 @pytest.mark.parametrize("name", ["sweep", "solve", "fatigue", "reproduce"])
