@@ -125,9 +125,8 @@ def bending_checks(mesh, tension: np.ndarray, held: tuple = ()) -> list[str]:
         lam = float(lb_t[i])
         if mesh.l0[i] > HELD_END_FRACTION * lam:
             # the advice rounded down to 2 digits: the length given is one that passes
-            cap = HELD_END_FRACTION * lam
-            cap = math.floor(cap / 10.0 ** (math.floor(math.log10(cap)) - 1)) * \
-                10.0 ** (math.floor(math.log10(cap)) - 1)
+            unit = 10.0 ** (math.floor(math.log10(HELD_END_FRACTION * lam)) - 1)
+            cap = math.floor(HELD_END_FRACTION * lam / unit) * unit
             out.append(f"resolution: element length {float(mesh.l0[i]):.3g} m is long at the "
                        f"{what} compared with its bending length sqrt(EI/T) = {lam:.3g} m "
                        f"(its moment converges as 3.8 (h/lambda)^2 %: use <= {cap:.2g} m "

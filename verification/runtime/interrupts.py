@@ -124,18 +124,18 @@ def keep_swallowed_interrupts() -> None:
     """A Ctrl-C that lands in code whose exceptions Python cannot raise (a ``__del__``,
     a weakref or garbage-collector callback: "Exception ignored in ... KeyboardInterrupt")
     is raised again in the main thread a moment later (:func:`_thread.interrupt_main`
-    from a timer thread: the signal's own path) instead of being printed and lost: the run ends in exit 130, not in exit 0
-    after finishing as if nothing came (measured once in 50 interrupts of a dynamic
-    solve on a loaded machine, and a fatigue run that went on past 120 s). Other
-    unraisable exceptions go to the hook in place before. Idempotent."""
+    from a timer thread: the signal's own path) instead of being printed and lost: the
+    run ends in exit 130, not in exit 0 after finishing as if nothing came (measured
+    once in 50 interrupts of a dynamic solve on a loaded machine, and a fatigue run that
+    went on past 120 s). Other unraisable exceptions go to the hook in place before.
+    Idempotent."""
     previous = sys.unraisablehook
     if getattr(previous, "_keeps_interrupts", False):
         return
 
     def hook(unraisable):
-        if isinstance(unraisable.exc_value, KeyboardInterrupt) or (
-                unraisable.exc_type is not None
-                and issubclass(unraisable.exc_type, KeyboardInterrupt)):
+        if unraisable.exc_type is not None and issubclass(unraisable.exc_type,
+                                                          KeyboardInterrupt):
             # raised from here it would be ignored again: a thread raises it a moment
             # later, once the main thread is back in code that can raise (should it land
             # in such code again, this hook comes again)
