@@ -180,9 +180,10 @@ def _files(folder: Path) -> set[str]:
 
 def test_the_lists_cover_every_committed_report():
     # reports/ holds what each command and study last wrote: every file must be listed,
-    # and every study's folder is there (one subfolder per unit for compare, cost and
-    # modes: exactly the study's units), each with its report.md, and bench/ with the
-    # throughput, method and peer files (an empty or missing reports/ fails here)
+    # and every study's folder is there (one subfolder per unit for compare and modes:
+    # exactly the study's units), each with its report.md, and bench/ with the throughput,
+    # method and peer files (an empty or missing reports/ fails here); reports/cost/ is not
+    # committed (its numbers are timings) and is checked when a checkout has run it
     from verification.studies import study
     rep = ROOT / "reports"
     lists = {"wang2014": outdir.STUDY_FILES["wang2014"], "yu2021": outdir.STUDY_FILES["yu2021"],
@@ -197,6 +198,8 @@ def test_the_lists_cover_every_committed_report():
     assert _files(rep / "bench") == set(bench)
     for name, names in (("compare", outdir.COMPARE), ("cost", outdir.COST),
                         ("modes", outdir.MODES)):
+        if name == "cost" and not (rep / name).is_dir():
+            continue
         units = sorted(p.name for p in (rep / name).iterdir())
         assert units == sorted(study(name).units), name
         for unit in units:
