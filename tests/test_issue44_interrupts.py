@@ -183,20 +183,19 @@ def test_an_interrupt_wrapped_by_numba_is_an_interrupt_not_an_unexpected_error(m
 
 def test_an_interrupted_pool_leaves_no_manager_thread_for_the_exit():
     # the exit's wake-up of a manager thread still ending printed the threading traceback:
-    # after the stop, the thread has ended (its pipe closed: the wake-up is skipped)
+    # when the stop returns, the thread has ended (its pipe closed: the exit's wake-up is
+    # skipped). Asserted at once, no join of the test's own: the stop read the thread
+    # after the executor's shutdown had set it to None, skipped its join, and an earlier
+    # form of this test, joining for 15 s itself, passed all the same
     import concurrent.futures as cf
     import multiprocessing as mp
     pool = cf.ProcessPoolExecutor(2, mp_context=mp.get_context("spawn"))
     pool.submit(time.sleep, 30.0)
     time.sleep(0.5)
     manager = pool._executor_manager_thread
+    assert manager is not None and manager.is_alive()
     engine_mod._stop(pool)
-    # (a loaded machine, e.g. the whole suite beside other jobs, may need a few more
-    # seconds than _stop's own wait; a thread that never ends still fails)
-    assert manager is not None
-    manager.join(15.0)
     assert not manager.is_alive()
-    assert threading.active_count() >= 1
 
 
 _SWALLOWED = """
@@ -245,3 +244,75 @@ def test_an_interrupt_in_a_nested_hold_reaches_the_outer_one():
                 signal.raise_signal(signal.SIGINT)
             reached = True                       # the inner hold did not raise
     assert reached
+
+
+_WRAPPED_IMPORT = """
+import importlib.abc, importlib.util, sys
+class Loader(importlib.abc.Loader):           # a module of the command line, loading
+    def create_module(self, spec):
+        return None
+    def exec_module(self, module):
+        if sys.argv[1] == "interrupt":        # what a dataclass field does with a Ctrl-C
+            try:
+                raise KeyboardInterrupt
+            except KeyboardInterrupt as exc:
+                raise RuntimeError("Error calling __set_name__ on 'Field'") from exc
+        raise RuntimeError("a real defect of the imports")
+class Finder(importlib.abc.MetaPathFinder):
+    def find_spec(self, name, path, target=None):
+        if name == "verification.cli.bench":
+            return importlib.util.spec_from_loader(name, Loader())
+sys.meta_path.insert(0, Finder())
+from verification.cli import main
+"""
+
+
+@pytest.mark.parametrize("mode", ["interrupt", "defect"])
+def test_an_interrupt_wrapped_while_the_program_loads_is_one_line(mode):
+    # a Ctrl-C in a descriptor's __set_name__ (a dataclass being created) reaches the
+    # imports' handler as "RuntimeError: Error calling __set_name__" (a traceback and exit
+    # 1, once in 80 interrupts of the imports): 130 and one line; any other error of the
+    # imports is still a traceback (the negative control: not hidden as an interrupt)
+    out = subprocess.run([sys.executable, "-c", _WRAPPED_IMPORT, mode], cwd=ROOT,
+                         capture_output=True, text=True, timeout=60)
+    if mode == "interrupt":
+        assert (out.returncode, out.stderr) == (130, "error: interrupted\n")
+    else:
+        assert out.returncode == 1 and "a real defect of the imports" in out.stderr
+
+
+_CAUGHT_ON_ITS_WAY = """
+import signal, sys
+import verification.cli as cli
+if sys.argv[1] == "python":                   # Python's own handler: the control
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+def command(argv):                            # a library's `except` catches the Ctrl-C
+    try:
+        signal.raise_signal(signal.SIGINT)
+        sum(range(1000))
+    except Exception:
+        pass
+    except KeyboardInterrupt:
+        pass
+    print("ran on to its end")
+    return 0
+cli._run = command
+sys.exit(cli.main())
+"""
+
+
+@pytest.mark.parametrize("handler, code", [("python", 0), ("counted", 130)])
+def test_a_ctrl_c_caught_by_a_library_still_ends_in_130(handler, code):
+    # a Ctrl-C caught on its way (wrapped, then met an `except Exception` of a library)
+    # let `reproduce` run to exit 0 with no word (once in 50 interrupts in CI): with
+    # Python's own handler (the control) that is what happens; the command line counts
+    # every Ctrl-C and ends such a run in 130 with one line that says so
+    out = subprocess.run([sys.executable, "-c", _CAUGHT_ON_ITS_WAY, handler], cwd=ROOT,
+                         capture_output=True, text=True, timeout=60)
+    assert out.returncode == code, (out.stdout, out.stderr)
+    assert out.stdout == "ran on to its end\n"
+    if code == 130:
+        assert len(out.stderr.splitlines()) == 1, out.stderr
+        assert out.stderr.startswith("error: interrupted: the Ctrl-C was caught by a library")
+    else:
+        assert out.stderr == ""
