@@ -302,3 +302,32 @@ def test_vessel_on_ends_whose_hang_off_is_an_output_is_refused(form, tmp_path, c
                       "raos": [rao_table(heave=0.5)]}
     line = refusal(data, tmp_path, capsys)
     assert line.split(": ")[2] == "vessel" and "needs fixed ends" in line, line
+
+
+def test_a_line_of_negligible_weight_gets_a_starting_shape_not_a_traceback():
+    # found by the slow scene fuzzer: a submerged weight of -4e-226 N/m (legal: a neutral
+    # line) made the starting catenary's weight scale square to zero, every start's shape
+    # NaN and no start left: "TypeError: cannot unpack non-iterable NoneType object" in
+    # vfife/mesh.py. Below 1 uN/m the start is the weightless line's; the shape is then the
+    # chord's (the line is 0.04 m longer than it: the start stays within that of it)
+    import vfife
+    from vfife.mesh import catenary_shape
+    d = {"name": "neutral-line", "line_types": {"pipe": {
+            "outer_diameter": 0.53, "mass_per_length": 2.0, "axial_stiffness": 1e10,
+            "bending_stiffness": 1e5}},
+         "ends": {"anchor": [0.0, 0.0], "hang_off": [11.277959243859009, 225.55918487718017]},
+         "segments": [{"line_type": "pipe", "length": 225.95387833902254,
+                       "submerged_weight": -4.319746361205657e-226}]}
+    scene = scene_from_dict(d)
+    s = np.linspace(0.0, scene.total_length, 21)
+    X, D, _ = catenary_shape(scene, s)
+    assert np.all(np.isfinite(X)) and np.all(np.isfinite(D))
+    chord = np.array(d["ends"]["hang_off"]) / np.hypot(*d["ends"]["hang_off"])
+    off_chord = X[:, :2] - np.outer(X[:, :2] @ chord, chord)
+    assert np.max(np.linalg.norm(off_chord, axis=1)) < 3.0    # sag of 0.04 m slack: ~2 m
+    res = vfife.solve(scene, element_length=5.0)
+    assert res.status.value in ("converged", "not_converged", "no_equilibrium"), res.message
+    # its residual is measured on the weightless line's scale (1e-6 EA), not on 1e-225 N
+    # (a 'converged' run reported 'residual 1.2e+222 x element weight')
+    if res.converged:
+        assert res.info["force_residual"] < 1e-2, res.message

@@ -21,6 +21,9 @@ from riser.sections import segment_properties
 
 from .end_conditions import end_array
 
+#: [N/m] a submerged weight below which the starting catenary is that of a weightless line
+WEIGHTLESS = 1e-6
+
 
 @dataclass
 class Mesh:
@@ -199,7 +202,11 @@ def catenary_shape(scene: Scene, s_nodes: np.ndarray, grid_step: float = 1.0,
     W = _cumtrapz(w, sg)          # integral of w from the anchor
     span = h - a
     chord = float(np.hypot(*span))
-    wref = float(np.mean(np.abs(w))) or 1.0
+    # the weights' scale of the unknowns; a line of negligible weight (below 1 uN/m, e.g.
+    # -4e-226 N/m given) is shaped as weightless: its scale squared underflowed to a zero
+    # tension (NaN shapes at every start, and no start at all: a TypeError, fuzzing)
+    wref = float(np.mean(np.abs(w)))
+    wref = wref if wref > WEIGHTLESS else 1.0
 
     def shape(params):
         H = abs(params[0]) * wref * chord

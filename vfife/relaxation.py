@@ -17,7 +17,7 @@ from enum import StrEnum
 
 import numpy as np
 
-from .mesh import Mesh
+from .mesh import WEIGHTLESS, Mesh
 from .model import Model
 from .timestep import critical_steps, damped_factor, nodal_stiffness
 
@@ -122,7 +122,10 @@ def weight_scale(model: Model) -> float:
     if model.use_drag and cur is not None:
         q = np.maximum(q, mesh.cdn_pl * cur.max_abs_speed ** 2)
     w = float(np.max(q * mesh.l0))
-    return w if w > 0.0 else 1e-6 * float(np.max(mesh.EA))
+    # below WEIGHTLESS [N/m] a line is weightless here too (a weight of -4e-226 N/m gave a
+    # scale of 1e-225 N and a converged run reported 'residual 1.2e+222 x element weight')
+    weightless = w <= WEIGHTLESS * float(np.max(mesh.l0))
+    return 1e-6 * float(np.max(mesh.EA)) if weightless else w
 
 
 def roundoff_floor(model: Model) -> tuple[float, float]:
