@@ -24,39 +24,6 @@ from .errors import SolveFailed, UnsupportedSceneError
 from .profile import Profile, summarize, write_json
 
 
-@dataclass(frozen=True)
-class Method:
-    """A method that fills this contract.
-
-    name : ``SolveResult.method``, ``--method NAME``.
-    package : its package, whose ``solve(scene, **overrides)`` returns a :class:`SolveResult`.
-    overrides : the settings a caller may override per solve (``tolerance``: the BVP's
-        solve_bvp tolerance; ``element_length`` [m]: the VFIFE's).
-    fixed_ends_only : it solves fixed-ends scenes only; a scene in a touchdown form is
-        converted first (``verification.pipeline.vfife_equivalent``).
-    progress : its ``solve`` takes ``progress=`` (riser.callbacks).
-    summary : one line on what it is.
-    """
-
-    name: str
-    package: str
-    overrides: tuple[str, ...] = ()
-    fixed_ends_only: bool = False
-    progress: bool = False
-    summary: str = ""
-
-
-#: the methods that fill this contract, by name (iterating gives the names)
-METHODS = {m.name: m for m in (
-    Method("bvp", "bvp", ("tolerance",),
-           summary="large-deformation beam equations, scipy solve_bvp"),
-    Method("vfife", "vfife", ("element_length",), fixed_ends_only=True, progress=True,
-           summary="vector form intrinsic finite elements, dynamic relaxation and dynamics"),
-    Method("analytic", "analytic",
-           summary="extensible catenary with matched boundary layers, closed form"),
-)}
-
-
 class Status(str, Enum):
     """How a run ended (the value is written to summary.json as ``status``)."""
 

@@ -1,11 +1,13 @@
 """The layering of ARCHITECTURE.md, checked on the source: what each package may import,
 which folder of ``verification/`` may import which, what may sit at the top of
 ``verification/``, no import cycle (function-local imports included), nothing imports the
-CLI, and no module above about 400 lines but the kernels."""
+CLI, no module above about 400 lines but the kernels, and every method reached through its
+registry (``verification/methods.py``)."""
 
 from __future__ import annotations
 
 import ast
+import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -32,7 +34,10 @@ FOLDER_ALLOWED = {
     "facade": {"core", "comparison"},
 }
 #: the only modules at the top of verification/ (the rest lives in a folder of its concern)
-TOP_MODULES = {"__init__.py", "pipeline.py", "quantities.py", "catalog.py", "regress.py"}
+TOP_MODULES = {"__init__.py", "pipeline.py", "methods.py", "quantities.py", "catalog.py",
+               "regress.py"}
+#: the method registry: the one module of verification/ that imports a method's entry points
+REGISTRY = ROOT / "verification" / "methods.py"
 #: the size rule: ~400 lines a module; vfife/kernels.py is one concern and may be long
 MAX_LINES = 420
 LONG_OK = {"vfife/kernels.py"}
@@ -186,3 +191,107 @@ def test_module_sizes():
     big = {str(p.relative_to(ROOT)): n for p in modules().values()
            if (n := len(p.read_text().splitlines())) > MAX_LINES}
     assert set(big) <= LONG_OK, big
+
+
+# ------------------------------------------------------------------ the method registry
+def registry_entries(source: str) -> tuple[set[str], set[tuple[str, str]]]:
+    """What the registry's source wraps: the method packages it imports (``import bvp``)
+    and the entry points it imports by name (``from bvp.modes import solve_modes``: the
+    pair (module, name))."""
+    packages, entries = set(), set()
+    for node in ast.walk(ast.parse(source)):
+        if isinstance(node, ast.Import):
+            packages |= {a.name.split(".")[0] for a in node.names}
+        elif isinstance(node, ast.ImportFrom) and node.module and not node.level:
+            packages.add(node.module.split(".")[0])
+            entries |= {(node.module, a.name) for a in node.names}
+    # the standard library and the shared layer are not methods
+    packages = {p for p in packages if p not in sys.stdlib_module_names} - {"riser",
+                                                                              "verification"}
+    return packages, {(m, n) for m, n in entries if m.split(".")[0] in packages}
+
+
+def registry_bypasses(sources: dict[str, str], packages: set[str],
+                      entries: set[tuple[str, str]]) -> list[str]:
+    """Imports in ``sources`` (module name -> source) that reach a method's entry point
+    without the registry: a method package itself (``import bvp``, ``from bvp import
+    solve``), a module holding an entry point (``import vfife.modes``, ``from bvp import
+    modes``) or an entry point by name (``from bvp.harmonic import solve_harmonic``). A
+    method's other modules (its internals: mesh, bench, time step) are not entries."""
+    entry_modules = {m for m, _ in entries}
+    bad = []
+    for name, src in sources.items():
+        for node in ast.walk(ast.parse(src)):
+            got = []
+            if isinstance(node, ast.Import):
+                got = [a.name for a in node.names
+                       if a.name in packages or a.name in entry_modules]
+            elif isinstance(node, ast.ImportFrom) and node.module and not node.level:
+                for a in node.names:
+                    if ((node.module, a.name) in entries
+                            or (node.module in packages and (
+                                f"{node.module}.{a.name}" in entry_modules
+                                or (node.module, a.name) in entries
+                                or a.name == "solve"))):
+                        got.append(f"{node.module}.{a.name}")
+            bad += [f"{name} imports {g}" for g in got]
+    return bad
+
+
+def _verification_sources() -> dict[str, str]:
+    return {n: p.read_text() for n, p in modules().items()
+            if n.startswith("verification") and p != REGISTRY}
+
+
+def test_the_registry_wraps_every_method_and_its_entry_points_exist():
+    # the packages and entry points the registry's wrappers import are the methods of
+    # the suite's layering, and each entry point is there (a renamed function fails here,
+    # not in the middle of a study)
+    import importlib
+    packages, entries = registry_entries(REGISTRY.read_text())
+    assert packages == ALLOWED["verification"] - {"riser"}
+    from verification.methods import METHODS
+    assert set(METHODS) == packages            # one registry line per method package
+    for module, name in entries:
+        assert callable(getattr(importlib.import_module(module), name)), (module, name)
+    for m in METHODS.values():
+        assert callable(m.solve) and m.name in m.solve.__code__.co_names + (m.name,)
+
+
+def test_a_method_added_in_a_fixture_is_found_and_an_import_around_it_fails():
+    # a fourth method registered the registry's way is found, and a module of
+    # verification/ that imports its solver (or its modes) directly is reported, while
+    # reading one of its internals is not
+    registry = REGISTRY.read_text() + (
+        "\n\ndef _ancf_solve(scene, **overrides):\n    import ancf\n"
+        "    return ancf.solve(scene, **overrides)\n\n\n"
+        "def _ancf_modes(scene, count=10, **kwargs):\n"
+        "    from ancf.modal import solve_modes\n    return solve_modes(scene, count)\n")
+    packages, entries = registry_entries(registry)
+    assert "ancf" in packages and ("ancf.modal", "solve_modes") in entries
+    around = {"verification.studies.x": "import ancf\n",
+              "verification.studies.y": "from ancf import solve\n",
+              "verification.studies.z": "from ancf.modal import solve_modes as m\n",
+              "verification.studies.w": "import ancf.modal\n",
+              "verification.studies.v": "def f():\n    from ancf import modal\n"}
+    assert len(registry_bypasses(around, packages, entries)) == len(around)
+    inside = {"verification.studies.u": "from ancf.mesh import build_mesh\n"}
+    assert registry_bypasses(inside, packages, entries) == []
+
+
+def test_verification_reaches_the_methods_only_through_the_registry():
+    packages, entries = registry_entries(REGISTRY.read_text())
+    bad = registry_bypasses(_verification_sources(), packages, entries)
+    assert not bad, bad
+
+
+def test_no_method_dispatch_by_import_module():
+    # importlib.import_module dispatch is what the registry replaced: no reader and no
+    # layer test could follow it (the facade's lazy names, the studies' and peers'
+    # registries import modules of verification/, not methods)
+    for n, p in modules().items():
+        src = p.read_text()
+        for node in ast.walk(ast.parse(src)):
+            if (isinstance(node, ast.Call) and getattr(node.func, "attr", "") == "import_module"
+                    and node.args and isinstance(node.args[0], ast.Constant)):
+                assert node.args[0].value.split(".")[0] not in ALLOWED["verification"], n

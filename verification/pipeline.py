@@ -22,15 +22,13 @@ the scene's own notes (``Scene.notes``: an anchor put on the seabed).
 from __future__ import annotations
 
 import dataclasses
-import importlib
 import time
 from dataclasses import dataclass
 
-import bvp
 from riser import validity
 from riser.errors import SolveFailed, UnsupportedSceneError
 from riser.profile import Profile
-from riser.result import METHODS, DynamicsResult, SolveResult, Status
+from riser.result import DynamicsResult, SolveResult, Status
 from riser.scene import (
     FixedEnds,
     HangOffAngleEnds,
@@ -40,6 +38,7 @@ from riser.scene import (
 )
 from riser.transform import fixed_ends_scene
 from vfife.dynamic_outputs import ARC_LENGTH_COLUMNS, ARC_LENGTH_KEYS
+from verification.methods import method as method_of
 from vfife.ends import require_vfife_model
 
 #: [deg] a VFIFE hang-off angle this far from the BVP's of the scene's own model (the
@@ -85,7 +84,7 @@ def vfife_equivalent(scene: Scene, paper: SolveResult | None = None) -> VfifeEqu
         return VfifeEquivalent(scene)
     t0 = time.perf_counter()
     if paper is None:
-        paper = bvp.solve(scene)
+        paper = method_of("bvp").solve(scene)
     if paper.status is Status.REFUSED:        # the VFIFE refuses what the BVP refuses
         raise UnsupportedSceneError(paper.message)
     if not paper.converged:
@@ -129,7 +128,7 @@ def shifted_dynamics(dyn: DynamicsResult | None, s_shift: float) -> DynamicsResu
 
 def solve_scene(scene: Scene, method: str, *, tolerance: float | None = None,
                 element_length: float | None = None, progress=None) -> SolveResult:
-    """Solve ``scene`` with ``method`` (a name of :data:`riser.result.METHODS`: 'bvp',
+    """Solve ``scene`` with ``method`` (a name of :data:`verification.methods.METHODS`: 'bvp',
     'vfife' or 'analytic', the closed form of a single-section line without current).
     ``tolerance`` applies to the BVP (solve_bvp tolerance), ``element_length`` [m] to the
     VFIFE; each overrides the scene's setting and is validated like it. A VFIFE run of a
@@ -142,16 +141,14 @@ def solve_scene(scene: Scene, method: str, *, tolerance: float | None = None,
     ``progress(message)`` or ``progress(message, fraction=None)`` (see
     :mod:`verification.runtime.progress`); a method without a callback (the BVP's
     ``solve_bvp``) is said only when it starts."""
-    m = METHODS.get(method)
-    if m is None:
-        raise ValueError(f"method must be one of {tuple(METHODS)}, got {method!r}")
+    m = method_of(method)
     given = {"tolerance": tolerance, "element_length": element_length}
     kwargs = {k: given[k] for k in m.overrides}
     if m.progress:
         kwargs["progress"] = progress
     elif progress is not None:
         progress(f"{method}: solving")
-    solve = importlib.import_module(m.package).solve
+    solve = m.solve
     if not m.fixed_ends_only or isinstance(scene.ends, FixedEnds):
         return with_notes(solve(scene, **kwargs), scene)
     return with_notes(_solve_converted(scene, solve, kwargs, progress), scene)

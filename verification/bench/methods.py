@@ -71,12 +71,13 @@ def run(out: Path) -> dict:
                              b_t[n] / a_t[n]} for n in a_t}
     bench["design"] = design_cost()
     # the VFIFE statics against the mesh and its kernel against a copy-only loop (issue 36)
-    from vfife import solve as vfife_solve
+    from verification.methods import method
     from vfife.scaling import kernel_over_copy, statics_scaling
     bench["vfife_scaling"] = {
         "statics": [statics_scaling(resolve(n)) for n in SCALING_SCENES],
-        "kernel": kernel_over_copy(resolve(SCALING_SCENES[0]),
-                                   vfife_solve(resolve(SCALING_SCENES[0])).solver_state)}
+        "kernel": kernel_over_copy(
+            resolve(SCALING_SCENES[0]),
+            method("vfife").solve(resolve(SCALING_SCENES[0])).solver_state)}
     (out / "bench.json").write_text(json.dumps(bench, indent=2) + "\n")
     return bench
 
@@ -101,14 +102,14 @@ def design_cost() -> dict:
     sample, the fatigue record and its rainflow count) and without, side by side."""
     import time
 
-    import vfife
+    from verification.methods import method
     warm_up, base = design_scenes()
     # compile the kernels of the run with a short one: the runs below are timed alone
-    vfife.solve(warm_up, element_length=8.0)
+    method("vfife").solve(warm_up, element_length=8.0)
     walls = {}
     for key, scene in (("without", base.replace(design=None)), ("with", base)):
         t0 = time.perf_counter()        # the whole solve: the fatigue count follows the run
-        vfife.solve(scene, element_length=DESIGN_ELEMENT_LENGTH).require()
+        method("vfife").solve(scene, element_length=DESIGN_ELEMENT_LENGTH).require()
         walls[key] = time.perf_counter() - t0
     return {"scene": DESIGN_SCENE, "element_length": DESIGN_ELEMENT_LENGTH,
             "duration_s": DESIGN_DURATION, "with_design_s": walls["with"],

@@ -4,8 +4,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from riser.result import METHODS, Status
+from riser.result import Status
 from verification.catalog import list_builtin, resolve
+from verification.methods import METHODS
 from verification.runtime import outdir
 
 from .common import (ELEMENT_LENGTH, TOLERANCE, add_ranged, check_overrides, check_ranges, err,

@@ -14,8 +14,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import analytic
 from riser.result import Status
+from verification.methods import method
 from verification.pipeline import shifted
 from verification.report.markdown import md_table, timed
 from verification.runtime import outdir
@@ -37,7 +37,7 @@ class AnalyticColumn:
 
     def solve(self, comp, folder: Path | None = None, progress=None) -> ColumnResult:
         """Solve the comparison's matched scene analytically; its rows against the BVP."""
-        res = analytic.solve(comp.matched_scene)
+        res = method("analytic").solve(comp.matched_scene)
         if res.status is Status.REFUSED:
             reason = res.message.split(": ", 1)[-1]
             return ColumnResult(self, note=f"The analytic method does not apply to this "

@@ -17,9 +17,9 @@ import time
 
 import numpy as np
 
-import vfife
 from riser.errors import SolveFailed
 from riser.result import Status
+from verification.methods import method
 from vfife.dynamics import DynamicsOutcome, run_dynamics
 
 from . import harmonics
@@ -45,7 +45,7 @@ def settled_run(scene_for, period: float, ramp: int, axis: str, h: float, what: 
     settle = SETTLE_PERIODS
     vs = scene_for(settle)
     t0 = time.perf_counter()
-    v = vfife.solve(vs, element_length=h, progress=progress,
+    v = method("vfife").solve(vs, element_length=h, progress=progress,
                     checkpoint_at=(ramp + 2 * settle) * period)
     wall = time.perf_counter() - t0
     if not v.converged:

@@ -36,12 +36,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-import bvp
-from bvp.harmonic import require_harmonic, require_wave, solve_harmonic
 from riser.dynamics import Dynamics, TopMotion
 from riser.errors import SceneError, SolveFailed, UnsupportedSceneError
 from riser.response import HarmonicResponse, harmonic_motion, motion_amplitudes
 from riser.scene import FixedEnds, Scene
+from verification.methods import method
 from verification.pipeline import vfife_equivalent
 
 from .dynamic_rows import ABOVE_SMALLEST, agreement_rows, nonlinearity, station_rows
@@ -145,7 +144,7 @@ def check_waves(scene: Scene, amplitudes=None) -> tuple[str, float, list[float]]
     for a in amps:
         ws = wave_scene(scene, a)                        # its checks, its key
         if isinstance(scene.ends, FixedEnds):
-            require_wave(ws)
+            method("bvp").require_wave(ws)
     return WAVE, tr.period, amps
 
 
@@ -170,7 +169,7 @@ def check_motions(scene: Scene, amplitudes=None) -> tuple[str, float, list[float
         else:
             scene.replace(**{"dynamics.top_motion.amplitude": a})
         if isinstance(scene.ends, FixedEnds):
-            require_harmonic(scene, motion_vector(scene, axis, a))
+            method("bvp").require_harmonic(scene, motion_vector(scene, axis, a))
     return axis, period, amps
 
 
@@ -215,8 +214,7 @@ def ramp_periods(scene: Scene, period: float, static) -> tuple[int, float | None
     suddenly and rings the lowest modes, which the drag of a small amplitude hardly damps
     (measured on yu2021-a3, lowest period 149 s, heave 0.1 m at 12.4 s: a 3-period ramp
     left the moment 7 % of its peak off after 36 periods; a ramp of 24 periods, 0.9 %)."""
-    from bvp.modes import solve_modes
-    modes = solve_modes(scene, 1, static=static)
+    modes = method("bvp").modes(scene, 1, static=static)
     longest = max((m.period_s for m in modes.modes), default=None)
     if longest is None:
         return RAMP_PERIODS, None
@@ -273,7 +271,7 @@ def compare_dynamics(scene: Scene, *, amplitudes=None, element_length: float | N
     h = element_length or matched.vfife.element_length
     if static is None:
         now("bvp: static state")
-        static = bvp.solve(matched)
+        static = method("bvp").solve(matched)
     if not static.converged:
         raise SolveFailed("bvp", static.status, f"bvp statics: {static.message}")
     check_period(matched, period, h, static)
@@ -293,10 +291,10 @@ def compare_dynamics(scene: Scene, *, amplitudes=None, element_length: float | N
         fd_scene = matched if fd_modifier is None else fd_modifier(matched)
         now(f"frequency domain: amplitude {a:g} m ({k + 1}/{len(amps)})")
         if axis == WAVE:
-            fd = solve_harmonic(wave_scene(fd_scene, a),
+            fd = method("bvp").harmonic(wave_scene(fd_scene, a),
                                 static=static if fd_modifier is None else None)
         else:
-            fd = solve_harmonic(fd_scene, period, motion_vector(matched, axis, a),
+            fd = method("bvp").harmonic(fd_scene, period, motion_vector(matched, axis, a),
                                 static=static if fd_modifier is None else None)
         if fd.status.value == "refused":
             raise UnsupportedSceneError(fd.message)

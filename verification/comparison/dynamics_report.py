@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from bvp.harmonic import transfer_sweep
+from verification.methods import method
 from verification.report.figures import new_figure, save
 from verification.report.markdown import GENERATED_NOTE, fmt, md_table, pct_step, timed
 from verification.runtime.stable import DYNAMIC_SIGNIFICANT, QUANTA
@@ -56,7 +56,7 @@ def transfer(dc: DynamicComparison) -> tuple[pd.DataFrame, pd.DataFrame]:
     periods = dc.period * np.geomspace(lo, hi, TRANSFER_PERIODS)
     amp = dc.results[0].amplitude
     rows, along = [], []
-    for r in transfer_sweep(dc.matched, periods, dc.axis, static=dc.static, amplitude=amp,
+    for r in method("bvp").transfer(dc.matched, periods, dc.axis, static=dc.static, amplitude=amp,
                             tolerance=1e-4, intervals=3000):
         if not r.converged:
             continue

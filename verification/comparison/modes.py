@@ -26,11 +26,11 @@ from pathlib import Path
 
 import numpy as np
 
-import vfife.modes
 from riser.callbacks import with_fraction
 from riser.errors import UnsupportedSceneError
 from riser.modes import PLANES, ModalResult, mac, shape_at
 from riser.result import Status
+from verification.methods import method
 from verification.pipeline import vfife_equivalent
 from verification.report.figures import new_figure, save
 from verification.report.markdown import GENERATED_NOTE, md_table, pct, timed
@@ -104,8 +104,6 @@ def run_modes(scene, count: int = 10, out: str | Path | None = None,
     :data:`FILES` in ``out``. Raises SceneError / UnsupportedSceneError (refused before
     solving) and SolveFailed (the BVP of a Wang-form scene's conversion failed); a modal
     analysis that fails is reported in its result's status."""
-    from bvp import modes as bvp_modes  # the BVP's modal analysis
-
     if count < 1:
         raise ValueError(f"count must be >= 1, got {count}")
     say = with_fraction(progress) or (lambda message, fraction=None: None)
@@ -113,9 +111,9 @@ def run_modes(scene, count: int = 10, out: str | Path | None = None,
     say("modes: fixed-ends scene", fraction=0.0)
     eq = vfife_equivalent(scene)
     results = {}
-    for k, (name, module) in enumerate((("bvp", bvp_modes), ("vfife", vfife.modes))):
+    for k, name in enumerate(("bvp", "vfife")):
         say(f"modes: {name}", fraction=0.05 + 0.45 * k)
-        res = module.solve_modes(eq.scene, count, progress=progress)
+        res = method(name).modes(eq.scene, count, progress=progress)
         if res.status is Status.REFUSED:            # bad input for the modal analysis
             raise UnsupportedSceneError(res.message)
         results[name] = _shifted(res, eq.s_shift)

@@ -29,10 +29,9 @@ from pathlib import Path
 
 import pandas as pd
 
-import bvp
-import vfife
 from riser.errors import SolveFailed
 from riser.scene import FixedEnds, Scene
+from verification.methods import method
 from verification.pipeline import shifted, vfife_equivalent
 from verification.quantities import reference_depth
 from verification.runtime.interrupts import reraise_interrupt
@@ -160,13 +159,13 @@ def compare(scene: Scene, *, element_length: float | None = None, paper_model: b
         notes.append(f"The scene was converted: {eq.note}; both methods solve this "
                      "converted scene.")
     now("bvp: solving the matched model")
-    b = bvp.solve(matched)
+    b = method("bvp").solve(matched)
     say(f"{scene.name}: matched BVP {b.message} ({time.perf_counter() - t0:.1f} s)")
     if not b.converged:
         raise SolveFailed("bvp", b.status, f"bvp did not converge on {matched.name}: "
                           f"{b.message}")
     vf_scene = vfife_modifier(matched) if vfife_modifier is not None else matched
-    v = vfife.solve(vf_scene, element_length=element_length, progress=progress)
+    v = method("vfife").solve(vf_scene, element_length=element_length, progress=progress)
     say(f"{scene.name}: VFIFE {v.message} ({time.perf_counter() - t0:.1f} s)")
     if not v.converged:
         raise SolveFailed("vfife", v.status, f"vfife did not converge on {scene.name}: "
@@ -183,7 +182,7 @@ def compare(scene: Scene, *, element_length: float | None = None, paper_model: b
         if paper is None:
             try:
                 now("bvp: solving the paper model (secondary comparison)")
-                paper = bvp.solve(paper_model_scene(scene))
+                paper = method("bvp").solve(paper_model_scene(scene))
             except Exception as exc:       # the paper model may not be able to represent it
                 reraise_interrupt(exc)     # but a Ctrl-C (in Numba) stops the comparison
                 notes.append(f"The paper model could not be set up: {exc}")

@@ -30,12 +30,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-import bvp
-import vfife
-from bvp.sea_response import SeaResponse, solve_sea
+from bvp.sea_response import SeaResponse
 from riser.dynamics import Dynamics
 from riser.errors import SceneError, SolveFailed, UnsupportedSceneError
 from riser.scene import Scene
+from verification.methods import method
 from verification.pipeline import vfife_equivalent
 
 from .dynamics import (RAMP_FUNDAMENTALS, RAMP_PERIODS, ramp_periods, require_one_drive,
@@ -122,11 +121,11 @@ def compare_sea(scene: Scene, *, element_length: float | None = None, static=Non
     h = element_length or matched.vfife.element_length
     if static is None:
         now("bvp: static state")
-        static = bvp.solve(matched)
+        static = method("bvp").solve(matched)
     if not static.converged:
         raise SolveFailed("bvp", static.status, f"bvp statics: {static.message}")
     now("frequency domain: the sea's components, drag linearised stochastically")
-    fd = solve_sea(matched, static=static, duration=STORM)
+    fd = method("bvp").sea(matched, static=static, duration=STORM)
     if fd.status.value == "refused":
         raise UnsupportedSceneError(fd.message)
     if not fd.converged:
@@ -144,7 +143,7 @@ def compare_sea(scene: Scene, *, element_length: float | None = None, static=Non
     vs = sea_run_scene(matched, ramp, settle, record)
     now(f"vfife: {vs.dynamics.duration:.0f} s in the sea")
     t0 = time.perf_counter()
-    v = vfife.solve(vs, element_length=h, progress=progress)
+    v = method("vfife").solve(vs, element_length=h, progress=progress)
     wall = time.perf_counter() - t0
     if not v.converged:
         raise SolveFailed("vfife", v.status, f"vfife in the sea: {v.message}")

@@ -4,7 +4,7 @@ A sweep file (the contract; docs/sweeps.md)::
 
     base = "yu2021-a3"             # a built-in scene name, or a scene file (relative to
                                    # the sweep file's folder)
-    methods = ["bvp", "vfife"]     # any of riser.result.METHODS; default both
+    methods = ["bvp", "vfife"]     # any of verification.methods.METHODS; default both
     zip = false                    # true: pair all the vary lists instead of their product
     [set]                          # optional: keys set in every case (e.g. a current's
     "environment.current.heights" = [0.0, 500.0]   # heights when the base has none)
@@ -38,9 +38,9 @@ from pathlib import Path
 from riser import validity
 from riser.errors import SceneError
 from riser.io.scene_file import is_file, load_scene, path_problem, read_text, scene_from_dict
-from riser.result import METHODS
 from riser.scene import Scene
 from verification.catalog import builtin_paths, resolve
+from verification.methods import METHODS
 
 from . import inert
 

@@ -100,17 +100,17 @@ def moordyn_dynamics(scene: Scene, h: float, work: Path) -> dict:
 
 
 def vfife_statics(scene: Scene, h: float) -> dict:
-    import vfife
-    res = vfife.solve(scene, element_length=h)
+    from verification.methods import method
+    res = method("vfife").solve(scene, element_length=h)
     return {"wall_s": res.wall_time_s, "force_residual": res.info["force_residual"],
             "elements": res.info["elements"], "converged": res.converged}
 
 
 def vfife_dynamics(scene: Scene, h: float) -> dict:
-    import vfife
+    from verification.methods import method
     dyn = scene.replace(dynamics=Dynamics(duration=DURATION, output_interval=1.0,
                                           top_motion=TopMotion(**MOTION)))
-    res = vfife.solve(dyn, element_length=h)
+    res = method("vfife").solve(dyn, element_length=h)
     i = res.info
     nodes = i["elements"] + 1
     return {"time_step": i["dynamic_time_step"], "steps": i["dynamic_steps"], "nodes": nodes,

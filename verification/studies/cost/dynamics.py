@@ -31,8 +31,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-import vfife
 from riser.scene import Dynamics, FixedEnds, Scene, TopMotion
+from verification.methods import method
 from vfife.dynamics import DynamicsOutcome, run_dynamics
 from vfife.mesh import build_mesh
 from vfife.timestep import critical_steps
@@ -226,7 +226,7 @@ def static_state(scene: Scene, h: float, static_cache: dict, static_s: dict):
     if res is None:
         t0 = time.perf_counter()
         try:
-            res = vfife.solve(scene, element_length=h)
+            res = method("vfife").solve(scene, element_length=h)
         except (RuntimeError, ValueError, FloatingPointError):
             res = None
         static_s[h] = time.perf_counter() - t0

@@ -7,16 +7,15 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
-import bvp
-import vfife
-import vfife.solver
 from riser.profile import summarize
 from riser.scene import Dynamics, Scene, TopMotion
 from verification.catalog import resolve
+from verification.methods import method
 from verification.pipeline import vfife_equivalent
 from verification.quantities import raw_values, reference_depth
 from verification.runtime.progress import RunCounter
 from vfife.dynamics import DynamicsOutcome, run_dynamics
+from vfife.solver import compile_seconds
 
 from . import dynamics as dyn
 from .analysis import analyse, cost_scaling
@@ -39,10 +38,10 @@ METHOD_ORDER = {"bvp": 0, "vfife": 1, "vfife-dyn": 2}
 
 def _solve(s: Setting, scene: Scene):
     if s.method == "bvp":
-        return bvp.solve(scene, **s.solve_kwargs)
+        return method("bvp").solve(scene, **s.solve_kwargs)
     sc = scene.replace(vfife=scene.vfife.replace(**s.vfife_changes)) if s.vfife_changes \
         else scene
-    return vfife.solve(sc, **s.solve_kwargs)
+    return method("vfife").solve(sc, **s.solve_kwargs)
 
 
 def _dynamics_time(s: Setting, scene: Scene, repeats: int, static_cache: dict):
@@ -120,7 +119,7 @@ def study(scene: Scene, *, repeats: int = 3, quick: bool = False, element_length
     t_start = time.perf_counter()
     repeats = max(1, int(repeats))
     notes = []
-    compile_s = vfife.solver.compile_seconds()     # warms up on the first call
+    compile_s = compile_seconds()     # warms up on the first call
     eq = vfife_equivalent(scene)
     fixed = eq.scene
     if eq.paper is not None:

@@ -25,11 +25,8 @@ from scipy.interpolate import CubicSpline
 from scipy.optimize import fsolve
 from scipy.special import jn_zeros
 
-import bvp
-import vfife
-from bvp.modes import solve_modes as bvp_modes
 from riser.sections import segment_properties
-from vfife.modes import solve_modes as vfife_modes
+from verification.methods import method
 
 from . import scenes as S
 from .scenes import EI, L, T
@@ -71,8 +68,8 @@ def ttr_deflection(y):
 
 def ttr_current():
     sc = S.scene(S.vertical(current=S.CURRENT, name="ttr-current"))
-    b = bvp.solve(sc).require()
-    v = vfife.solve(sc, element_length=1.0, tolerance=VFIFE_TOLERANCE).require()
+    b = method("bvp").solve(sc).require()
+    v = method("vfife").solve(sc, element_length=1.0, tolerance=VFIFE_TOLERANCE).require()
     rows = []
     for frac, tol in ((0.5, 2e-4), (0.2, 5e-4)):
         y = frac * L
@@ -84,7 +81,7 @@ def ttr_current():
     rows.append(row("ttr-current", "top's rise y_top - L", "m", rise,
                     b.profile.y[-1] - L, v.profile.y[-1] - L, 1e-6 / rise, 2e-6 / rise))
     # the relaxation's default stop on the same mesh: what the tolerance 1e-5 is for
-    v3 = vfife.solve(sc, element_length=1.0).require()
+    v3 = method("vfife").solve(sc, element_length=1.0).require()
     default = x_at(v3.profile, L / 2) / ttr_deflection(L / 2)[0] - 1.0
     return rows, {"bvp": b.profile, "vfife": v.profile, "default_stop_rel": default,
                   "default_tolerance": v3.info["tolerance"]}
@@ -118,13 +115,14 @@ def clamp_flex(k: float):
                             hang_off_joint={"kind": "spring", "direction_deg": 90.0,
                                             "rotational_stiffness": k}, name=case))
     M0, ML, w_mid = clamp_closed_form(k, math.radians(1.0))
-    b = bvp.solve(sc).require()
-    v = vfife.solve(sc, element_length=0.5, tolerance=VFIFE_TOLERANCE).require()
+    b = method("bvp").solve(sc).require()
+    v = method("vfife").solve(sc, element_length=0.5, tolerance=VFIFE_TOLERANCE).require()
     sb, sv = b.summary(), v.summary()
     data = None
     if k == FLEX_STIFFNESS[0]:
         # the same mesh relaxed ten times further: what the stop at 1e-5 leaves (report)
-        v6 = vfife.solve(sc, element_length=0.5, tolerance=VFIFE_TOLERANCE / 10).require()
+        v6 = method("vfife").solve(sc, element_length=0.5,
+                                   tolerance=VFIFE_TOLERANCE / 10).require()
         data = {"x_mid_rel": x_at(v6.profile, L / 2) / w_mid - 1.0,
                 "hang_off_moment_rel": v6.summary()["hang_off_moment"] / ML - 1.0}
     return [
@@ -146,8 +144,8 @@ def frequencies(modal, plane: str) -> np.ndarray:
 
 
 def modes_of(sc, count: int, static_b, static_v):
-    b = bvp_modes(sc, count, static=static_b)
-    v = vfife_modes(sc, count, static=static_v)
+    b = method("bvp").modes(sc, count, static=static_b)
+    v = method("vfife").modes(sc, count, static=static_v)
     for name, res in (("BVP", b), ("VFIFE", v)):
         if not res.converged:
             raise RuntimeError(f"{sc.name}: the {name} modes: {res.message}")
@@ -168,7 +166,7 @@ def ttr_modes():
     m = p.mass + p.added_mass
     closed = [math.sqrt((EI * k ** 4 + T * k ** 2) / m) / (2 * math.pi)
               for k in (n * math.pi / L for n in (1, 2, 3, 4))]
-    found = modes_of(sc, 4, None, vfife.solve(sc, element_length=0.5).require())
+    found = modes_of(sc, 4, None, method("vfife").solve(sc, element_length=0.5).require())
     return mode_rows("ttr-modes", closed, found, 2e-4, 2e-3), None
 
 
@@ -177,8 +175,8 @@ def hanging_chain():
     sc = S.scene(S.hanging_chain())
     p = segment_properties(sc)[0]
     closed = jn_zeros(0, 5) / 2.0 * math.sqrt(p.weight / p.mass / L) / (2 * math.pi)
-    b = bvp.solve(sc).require()
-    v = vfife.solve(sc, element_length=0.5).require()
+    b = method("bvp").solve(sc).require()
+    v = method("vfife").solve(sc, element_length=0.5).require()
     found = modes_of(sc, 5, b, v)
     stretch = p.weight * L * L / (2.0 * S.EA)
     top = S.CHAIN_TOP - L
@@ -217,8 +215,8 @@ def attachment(kind: str):
     sc = S.scene(S.cable(kind))
     W = sc.attachments[0].net_weight(sc.gravity, sc.water_density)
     H, V0, (xp, yp), (t_below, t_above) = two_catenaries(W)
-    b = bvp.solve(sc).require()
-    v = vfife.solve(sc, element_length=0.5, tolerance=VFIFE_TOLERANCE).require()
+    b = method("bvp").solve(sc).require()
+    v = method("vfife").solve(sc, element_length=0.5, tolerance=VFIFE_TOLERANCE).require()
     pb, pv = b.profile, v.profile
     # the BVP's internal force |P| = hypot(T, F) either side of the point (its station at
     # s_p holds the side below, the next one the side above); the VFIFE's node: the mean

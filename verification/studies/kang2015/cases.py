@@ -26,14 +26,12 @@ import pandas as pd
 from scipy.interpolate import CubicSpline
 from scipy.optimize import minimize_scalar
 
-import analytic
-import bvp
-import vfife
 from riser.errors import SolveFailed
 from riser.profile import Profile, _parabolic_peak
 from riser.scene import Scene
 from riser.settings import AnalyticSettings
 from verification.catalog import resolve
+from verification.methods import method
 from verification.pipeline import shifted, vfife_equivalent
 from verification.quantities import curve_distance, signed_moment
 from verification.report.markdown import pct
@@ -110,7 +108,7 @@ def cases(base: Scene | None = None) -> list[Case]:
 
 
 def analytic_model(scene: Scene, model: str):         # 'composite' | 'piecewise' | 'catenary'
-    return analytic.solve(scene.replace(analytic=AnalyticSettings(model=model)))
+    return method("analytic").solve(scene.replace(analytic=AnalyticSettings(model=model)))
 
 
 def _need(res, what: str):                 # a converged result, else SolveFailed
@@ -172,7 +170,7 @@ def solve_case(case: Case, with_vfife: bool = True, log=print) -> Solved:
     jlay = {"catenary": _need(analytic_model(sc, "catenary"), f"{case.label} catenary"),
             "analytic": _need(analytic_model(sc, "composite"), f"{case.label} composite"),
             "piecewise": _need(analytic_model(sc, "piecewise"), f"{case.label} piecewise"),
-            "bvp": _need(bvp.solve(sc), f"{case.label} bvp (J-lay)")}
+            "bvp": _need(method("bvp").solve(sc), f"{case.label} bvp (J-lay)")}
     eq = vfife_equivalent(sc, paper=jlay["bvp"])
     fx = eq.scene                                   # the matched model's fixed-ends scene
     out = Solved(case, jlay, {})
@@ -180,13 +178,13 @@ def solve_case(case: Case, with_vfife: bool = True, log=print) -> Solved:
         res = _need(analytic_model(fx, model), f"{case.label} {model} (matched)")
         out.matched[m] = shifted(res.profile, eq.s_shift)
     t0 = time.perf_counter()
-    mb = _need(bvp.solve(fx), f"{case.label} bvp (matched)")
+    mb = _need(method("bvp").solve(fx), f"{case.label} bvp (matched)")
     out.seconds["bvp_matched"] = time.perf_counter() - t0
     out.matched["bvp"] = shifted(mb.profile, eq.s_shift)
     done = {**jlay, "bvp_matched": mb}
     if with_vfife:
         t0 = time.perf_counter()
-        done["vfife"] = v = vfife.solve(fx)
+        done["vfife"] = v = method("vfife").solve(fx)
         out.seconds["vfife"] = time.perf_counter() - t0
         if v.converged:
             out.matched["vfife"] = shifted(v.profile, eq.s_shift)
@@ -317,10 +315,11 @@ def epsilon_sweep(base: Scene, stiffnesses=EPS_STIFFNESSES, log=print) -> pd.Dat
     for EI in stiffnesses:
         sc = with_stiffness(base, EI)
         t0 = time.perf_counter()
-        b = _need(bvp.solve(sc.replace(bvp=sc.bvp.replace(tolerance=EPS_TOLERANCE))), "eps")
+        b = _need(method("bvp").solve(sc.replace(bvp=sc.bvp.replace(tolerance=EPS_TOLERANCE))),
+                  "eps")
         tb = time.perf_counter() - t0
-        b7 = _need(bvp.solve(sc.replace(bvp=sc.bvp.replace(tolerance=10 * EPS_TOLERANCE))),
-                   "eps")
+        b7 = _need(method("bvp").solve(
+            sc.replace(bvp=sc.bvp.replace(tolerance=10 * EPS_TOLERANCE))), "eps")
         co, ca = (_need(analytic_model(sc, m), f"eps {m}") for m in ("composite", "catenary"))
         qb = quantities(b.profile)
         row = {"EI_N_m2": EI, "epsilon": co.info["epsilon"], "delta": co.info["delta"],
@@ -356,7 +355,7 @@ def timings(base: Scene, repeats: int = 200) -> dict:
         return float(np.min(t))
     out = {m: med(lambda m=m: analytic_model(base, m), repeats)
            for m in ("catenary", "composite", "piecewise")}
-    out["bvp"] = med(lambda: bvp.solve(base), max(3, repeats // 20))
+    out["bvp"] = med(lambda: method("bvp").solve(base), max(3, repeats // 20))
     return out
 
 

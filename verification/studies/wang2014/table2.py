@@ -23,11 +23,10 @@ from pathlib import Path
 import pandas as pd
 from scipy.optimize import brentq
 
-import bvp
-import vfife
 from riser.errors import SolveFailed
 from riser.scene import HangOffAngleEnds, Scene
 from verification.catalog import resolve
+from verification.methods import method
 from verification.pipeline import vfife_equivalent
 from verification.quantities import reference_depth
 from verification.report.figures import new_figure, save
@@ -95,7 +94,7 @@ def inverse(scene: Scene, height: float, angle: float) -> Scene:
 
 
 def _solve(scene: Scene):
-    res = bvp.solve(scene)
+    res = method("bvp").solve(scene)
     if not res.converged:
         raise SolveFailed("bvp", res.status, f"{scene.name}: {res.message}")
     return res
@@ -109,14 +108,14 @@ def vfife_quantities(scene: Scene, bvp_result, element_length: float | None = No
     ``"_matched"`` (if ``with_matched``) those of the BVP solving that same scene (the
     extensible line on the elastic seabed: the model VFIFE solves)."""
     eq = vfife_equivalent(scene, paper=bvp_result)
-    res = vfife.solve(eq.scene, element_length=element_length)
+    res = method("vfife").solve(eq.scene, element_length=element_length)
     if not res.converged:
         raise SolveFailed("vfife", res.status, f"vfife on {scene.name}: {res.message}")
     first = eq.scene.segments[0].length     # S_L: its length beyond the BVP touchdown
     v = res.summary()
     out = {**table2_quantities(v, first - v["tdp_s"]), "_wall_time_s": res.wall_time_s}
     if with_matched:
-        matched = bvp.solve(eq.scene)
+        matched = method("bvp").solve(eq.scene)
         if not matched.converged:
             raise SolveFailed("bvp", matched.status, f"bvp on the fixed-ends {scene.name}: "
                               f"{matched.message}")
@@ -190,7 +189,7 @@ def run(out_dir: str | Path = "reports/wang2014", log=print, methods=("bvp", "vf
 
         def tdp(cdn, sc=sc, known=known):
             if cdn not in known:
-                res = bvp.solve(with_cdn(sc, cdn))
+                res = method("bvp").solve(with_cdn(sc, cdn))
                 known[cdn] = quantities(res)["T_TDP"] if res.converged else None
             return known[cdn]
 
