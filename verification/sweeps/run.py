@@ -20,6 +20,7 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from riser.result import Status
 from verification.runtime.engine import Engine
 from verification.runtime.interrupts import held_interrupts
 from verification.runtime.progress import UnitTracker
@@ -84,14 +85,14 @@ class SweepRun:
         """(case, method, status, reason) of every method that did not converge."""
         return [(r["index"], m, d["status"], d.get("message", ""))
                 for r in self.records for m, d in r["methods"].items()
-                if d["status"] != "converged"]
+                if d["status"] != Status.CONVERGED]
 
     def warned(self) -> list[tuple[int, str, list[str]]]:
         """(case, method, warnings) of every converged result outside its model's validity
         (riser/validity.py: strain, resolution, surface, seabed, compression)."""
         return [(r["index"], m, d["warnings"]) for r in self.records
                 for m, d in r["methods"].items()
-                if d["status"] == "converged" and d.get("warnings")]
+                if d["status"] == Status.CONVERGED and d.get("warnings")]
 
     def disagreements(self) -> list[dict]:
         return [r for r in self.records

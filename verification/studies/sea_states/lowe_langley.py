@@ -22,6 +22,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from riser.result import Status
 from verification.catalog import resolve
 from verification.methods import method
 from verification.report.figures import new_figure, save
@@ -75,8 +76,8 @@ def run_case(case: int) -> dict:
     ours = np.interp(t, ts["time"], ts["hang_off_tension"]) / 1e3
     d = np.abs(ours - ref)
     k = int(np.argmax(d))
-    return {"case": case, "status": "converged", "t": t, "published": ref, "vfife": ours,
-            "series": ts, "worst_kN": float(d[k]), "worst_at_s": float(t[k]),
+    return {"case": case, "status": Status.CONVERGED.value, "t": t, "published": ref,
+            "vfife": ours, "series": ts, "worst_kN": float(d[k]), "worst_at_s": float(t[k]),
             "static_kN": float(r.profile.tension[-1]) / 1e3,
             "mean_published_kN": float(ref.mean()), "mean_vfife_kN": float(ours.mean()),
             "wall_s": wall, "heading_deg": sc.waves.trains[0].heading_deg}
@@ -89,7 +90,7 @@ def run_unit(out: Path, note: str = "") -> str:
     results = [run_case(c) for c in CASES]
     rows, table = [], []
     for res in results:
-        if res["status"] != "converged":
+        if res["status"] != Status.CONVERGED:
             table.append({"case": res["case"], "verdict": "failed", "note": res["message"]})
             continue
         rows += [{"case": res["case"], "t_ref_s": tr - START, "published_kN": p,
@@ -114,7 +115,7 @@ def run_unit(out: Path, note: str = "") -> str:
 def _plot(results: list, path: Path) -> None:
     fig, axes = new_figure(len(results), 1, size=(9.0, 2.6 * len(results)))
     for ax, res in zip(axes[:, 0], results):
-        if res["status"] != "converged":
+        if res["status"] != Status.CONVERGED:
             ax.set_title(f"case {res['case']}: {res['status']}")
             continue
         ts = res["series"]
