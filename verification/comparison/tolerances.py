@@ -1,4 +1,8 @@
-"""Agreement tolerances of the VFIFE-vs-BVP comparison protocol: the one place they live.
+"""Agreement tolerances of the static VFIFE-vs-BVP comparison protocol: the one place they
+live. One table per protocol, each in one module, each tolerance with its reason: the
+dynamic protocol's in :data:`verification.comparison.dynamic_rows.TOLERANCES`, the
+irregular sea's in :data:`verification.comparison.sea_dynamics.TOLERANCE`, the MoorDyn
+column's in :data:`verification.peers.moordyn.column.TOLERANCES`.
 
 Both methods solve the same continuum model (extensible line on a unilateral Winkler
 seabed of the scene's stiffness; see :mod:`verification.comparison.protocol`), so a tolerance only
