@@ -295,3 +295,26 @@ def test_no_method_dispatch_by_import_module():
             if (isinstance(node, ast.Call) and getattr(node.func, "attr", "") == "import_module"
                     and node.args and isinstance(node.args[0], ast.Constant)):
                 assert node.args[0].value.split(".")[0] not in ALLOWED["verification"], n
+
+
+def parameter_counts(source: str) -> dict[str, int]:
+    """Function name -> how many parameters it takes (positional, keyword-only, *args,
+    **kwargs), for every function of ``source``."""
+    out = {}
+    for n in ast.walk(ast.parse(source)):
+        if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            a = n.args
+            out[n.name] = (len(a.posonlyargs) + len(a.args) + len(a.kwonlyargs)
+                           + (a.vararg is not None) + (a.kwarg is not None))
+    return out
+
+
+def test_no_function_outside_the_kernels_takes_more_than_30_parameters():
+    # a long argument list is a contract nobody can read (issue 45); the Numba kernels
+    # take their arrays one by one (vfife/kernels.py, its own rule: grouped arrays only
+    # at the same speed in the bench). The counter must see a long list:
+    assert parameter_counts("def f(a, b, *c, d=1, **e): pass") == {"f": 5}
+    long = {f"{p.relative_to(ROOT)}:{name}": k for p in modules().values()
+            if p.relative_to(ROOT).as_posix() not in LONG_OK
+            for name, k in parameter_counts(p.read_text()).items() if k > 30}
+    assert not long, long
