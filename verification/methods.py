@@ -9,7 +9,7 @@ loads none):
 
 - ``solve(scene, **overrides) -> riser.result.SolveResult``: statics, and the time domain
   when the scene has ``[dynamics]`` and the method has ``time_domain``;
-- ``modes(scene, count, *, static=None, progress=None) -> riser.modal.ModalResult``;
+- ``modes(scene, count, *, static=None, progress=None) -> riser.modes.ModalResult``;
 - the frequency domain about the static state (the BVP): ``harmonic`` (one period, a
   top motion or a wave), ``transfer`` (a sweep of periods along one axis of motion), ``sea``
   (an irregular sea's spectral response) and their ``require_*`` refusals.
@@ -59,10 +59,6 @@ class Method:
     sea: Callable | None = None
     require_harmonic: Callable | None = None
     require_wave: Callable | None = None
-
-    @property
-    def frequency_domain(self) -> bool:
-        return self.harmonic is not None
 
 
 # --------------------------------------------------------------------------------- the BVP

@@ -46,7 +46,7 @@ def settled_run(scene_for, period: float, ramp: int, axis: str, h: float, what: 
     vs = scene_for(settle)
     t0 = time.perf_counter()
     v = method("vfife").solve(vs, element_length=h, progress=progress,
-                    checkpoint_at=(ramp + 2 * settle) * period)
+                              checkpoint_at=(ramp + 2 * settle) * period)
     wall = time.perf_counter() - t0
     if not v.converged:
         raise SolveFailed("vfife", v.status, f"vfife at {what}: {v.message}")

@@ -39,6 +39,7 @@ import numpy as np
 from riser.dynamics import Dynamics, TopMotion
 from riser.errors import SceneError, SolveFailed, UnsupportedSceneError
 from riser.response import HarmonicResponse, harmonic_motion, motion_amplitudes
+from riser.result import Status
 from riser.scene import FixedEnds, Scene
 from verification.methods import method
 from verification.pipeline import vfife_equivalent
@@ -292,11 +293,11 @@ def compare_dynamics(scene: Scene, *, amplitudes=None, element_length: float | N
         now(f"frequency domain: amplitude {a:g} m ({k + 1}/{len(amps)})")
         if axis == WAVE:
             fd = method("bvp").harmonic(wave_scene(fd_scene, a),
-                                static=static if fd_modifier is None else None)
+                                        static=static if fd_modifier is None else None)
         else:
             fd = method("bvp").harmonic(fd_scene, period, motion_vector(matched, axis, a),
-                                static=static if fd_modifier is None else None)
-        if fd.status.value == "refused":
+                                        static=static if fd_modifier is None else None)
+        if fd.status is Status.REFUSED:
             raise UnsupportedSceneError(fd.message)
         if not fd.converged:
             raise SolveFailed("bvp", fd.status, f"frequency domain: {fd.message}")

@@ -56,8 +56,8 @@ def transfer(dc: DynamicComparison) -> tuple[pd.DataFrame, pd.DataFrame]:
     periods = dc.period * np.geomspace(lo, hi, TRANSFER_PERIODS)
     amp = dc.results[0].amplitude
     rows, along = [], []
-    for r in method("bvp").transfer(dc.matched, periods, dc.axis, static=dc.static, amplitude=amp,
-                            tolerance=1e-4, intervals=3000):
+    for r in method("bvp").transfer(dc.matched, periods, dc.axis, static=dc.static,
+                                    amplitude=amp, tolerance=1e-4, intervals=3000):
         if not r.converged:
             continue
         moment = np.abs(r.amplitudes["moment"]) + np.abs(r.amplitudes["moment_out"])

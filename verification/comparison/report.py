@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
+from riser.result import Status
 from verification.pipeline import shifted
 from verification.quantities import signed_moment
 from verification.report.figures import new_figure, save
@@ -142,7 +143,7 @@ def report_markdown(comp: Comparison, heading: str = "#") -> str:
                                    "relative", "relative, matched model", "within tolerance"],
                                   rows))
         else:
-            how = ("does not apply (refused)" if comp.paper.status.value == "refused"
+            how = ("does not apply (refused)" if comp.paper.status is Status.REFUSED
                    else f"did not converge ({comp.paper.status.value})")
             lines.append(f"The paper-model BVP {how}: {comp.paper.message}")
     lines += ["", f"{heading}# Figures", "", "![configurations](configurations.png)", "",

@@ -33,6 +33,7 @@ import numpy as np
 from bvp.sea_response import SeaResponse
 from riser.dynamics import Dynamics
 from riser.errors import SceneError, SolveFailed, UnsupportedSceneError
+from riser.result import Status
 from riser.scene import Scene
 from verification.methods import method
 from verification.pipeline import vfife_equivalent
@@ -126,7 +127,7 @@ def compare_sea(scene: Scene, *, element_length: float | None = None, static=Non
         raise SolveFailed("bvp", static.status, f"bvp statics: {static.message}")
     now("frequency domain: the sea's components, drag linearised stochastically")
     fd = method("bvp").sea(matched, static=static, duration=STORM)
-    if fd.status.value == "refused":
+    if fd.status is Status.REFUSED:
         raise UnsupportedSceneError(fd.message)
     if not fd.converged:
         raise SolveFailed("bvp", fd.status, f"frequency domain (sea): {fd.message}")
