@@ -6,7 +6,7 @@ from __future__ import annotations
 import statistics
 import time
 
-from riser.scene import Scene
+from riser.model.scene import Scene
 
 from .solver import solve
 

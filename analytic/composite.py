@@ -24,7 +24,7 @@ import math
 
 import numpy as np
 
-from riser.profile import Profile
+from riser.results.profile import Profile
 
 from .forms import Line, Outer
 from .catenary import bending_correction

@@ -1,7 +1,7 @@
 """The analytic method: catenary and boundary layers in closed form (microseconds to
 milliseconds per solve), a third reference beside the BVP and the VFIFE.
 
-Public entry: :func:`solve` (scene -> :class:`riser.result.SolveResult`).
+Public entry: :func:`solve` (scene -> :class:`riser.results.result.SolveResult`).
 
 Scope: one section along the whole line (every segment of the same weight, EI and EA),
 no current (a catenary with drag has no closed form; refused), steady internal flow
@@ -31,15 +31,15 @@ import time
 
 import numpy as np
 
-from riser import validity
+from riser.results import validity
 from riser.design import checks as design_checks
 from riser.errors import UnsupportedSceneError
-from riser.frame import LinePlane
-from riser.internal_flow import wall_tension
-from riser.result import SolveResult, Status
-from riser.scene import FixedEnds, HangOffAngleEnds, Scene, TdpTensionEnds, TopTensionEnds
-from riser.sections import segment_properties
-from riser.settings import AnalyticSettings
+from riser.model.frame import LinePlane
+from riser.physics.internal_flow import wall_tension
+from riser.results.result import SolveResult, Status
+from riser.model.scene import FixedEnds, HangOffAngleEnds, Scene, TdpTensionEnds, TopTensionEnds
+from riser.model.sections import segment_properties
+from riser.model.settings import AnalyticSettings
 
 from . import forms
 from .composite import build

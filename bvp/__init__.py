@@ -2,6 +2,6 @@
 seabed, with current drag) on scipy.integrate.solve_bvp."""
 
 from .solver import solve
-from . import modes  # noqa: F401  (bvp.modes.solve_modes: the modal analysis)
+from .modal import modes  # noqa: F401  (bvp.modal.modes.solve_modes: the modal analysis)
 
 __all__ = ["solve"]

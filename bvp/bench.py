@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from riser.scene import HangOffAngleEnds, Scene
+from riser.model.scene import HangOffAngleEnds, Scene
 
 from .solver import solve
 
@@ -85,13 +85,13 @@ def rod_ratios(planar: list[Scene], three_d: list[Scene], repeats: int = 3) -> d
 def against_reference(scenes: list[Scene], repeats: int = 3) -> dict:
     """Each scene solved as the BVP solves it and as it did before issue 36 (scipy's own
     solve_bvp, unpruned: :func:`bvp.collocation.unpruned`; the grounded guess's grid
-    scanned point by point, each point's end sampled: :data:`bvp.guess.SCALAR_GRID`),
+    scanned point by point, each point's end sampled: :data:`bvp.beam.guess.SCALAR_GRID`),
     alternately, best of
     ``repeats`` each: {"scenes": {name: {"reference_s", "bvp_s"}}, "reference_s", "bvp_s",
     "speed_up"} (the totals [s] and their ratio). The two give the same solution (the
     same guess; the factorisation's pivot order differs, tests/test_vfife_newton.py)."""
     from .collocation import unpruned
-    from .guess import SCALAR_GRID
+    from .beam.guess import SCALAR_GRID
     rows = {}
     for sc in scenes:
         best = {"reference_s": math.inf, "bvp_s": math.inf}

@@ -19,7 +19,7 @@ stacked n = 48 case by 30 %. The peak is reached at the largest mesh, ``[bvp] ma
 
 from __future__ import annotations
 
-from .layout import MIN_PIECE_NODES
+from .beam.layout import MIN_PIECE_NODES
 
 #: bytes per node per state x (state + parameter) entry of the dense blocks
 BYTES_PER_NODE_N2 = 150.0

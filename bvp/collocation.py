@@ -3,7 +3,7 @@ factorisation.
 
 scipy's collocation (``scipy.integrate._bvp``) assembles the Newton matrix from a dense
 n x n block of df/dy per mesh interval and factorises it with SuperLU. The riser
-equations' blocks are mostly structural zeros (bvp/equations.py: 6 states, 13 of the 36
+equations' blocks are mostly structural zeros (bvp/beam/equations.py: 6 states, 13 of the 36
 entries of d(a u')/du nonzero; the contact-zone form's two blocks do not interact at all;
 the modes' 7 states fewer still), stored as explicit zeros that SuperLU orders and
 eliminates like any other entry. Dropping them (``eliminate_zeros``) leaves the matrix

@@ -1,5 +1,5 @@
 """A clustered mesh on the unit interval: the starting mesh of each piece of the line
-(bvp/layout.py) and of the modal analysis's pieces (bvp/modes.py)."""
+(bvp/beam/layout.py) and of the modal analysis's pieces (bvp/modal/modes.py)."""
 
 from __future__ import annotations
 

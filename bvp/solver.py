@@ -1,8 +1,8 @@
 """Boundary-value solver of the multi-segment large-deformation beam (scipy ``solve_bvp``).
 
-Public entry: :func:`solve` (scene -> :class:`riser.result.SolveResult`).
+Public entry: :func:`solve` (scene -> :class:`riser.results.result.SolveResult`).
 
-The model (``bvp/equations.py``) is chosen by the scene: ``scene.axial_model``
+The model (``bvp/beam/equations.py``) is chosen by the scene: ``scene.axial_model``
 ('extensible', strain T/EA, or the 'inextensible' limit) and ``scene.seabed_model``
 ('elastic' Winkler foundation of [seabed] stiffness, or the 'rigid' limit). Ends
 (``scene.ends.kind``):
@@ -27,12 +27,12 @@ The model (``bvp/equations.py``) is chosen by the scene: ``scene.axial_model``
 - ``fixed`` otherwise: pinned-pinned free-hanging line, positions given and M = 0 at both.
 
 Unknown T(0) is simply a free state value. The line is one block of six states over one
-domain with its joints as mesh points (bvp/layout.py, bvp/problem.py), so the cost does
+domain with its joints as mesh points (bvp/beam/layout.py, bvp/beam/problem.py), so the cost does
 not grow with the number of segments beyond the mesh the physics needs.
 
 A 3D scene (a hang-off out of the anchor's plane, a current at any heading or turning with
-depth) is solved as the 3D rod of bvp/rod_equations.py in the plane of its ends
-(bvp/rod_problem.py): ten states a block, the same forms with z, the tilt phi and the
+depth) is solved as the 3D rod of bvp/rod/equations.py in the plane of its ends
+(bvp/rod/problem.py): ten states a block, the same forms with z, the tilt phi and the
 out-of-plane moment M2 added to their conditions, the same continuations plus one from the
 loads in the plane to the full ones (bvp/strategy.py).
 """
@@ -44,19 +44,19 @@ import time
 
 import numpy as np
 
-from riser import validity
+from riser.results import validity
 from riser.design import checks as design_checks
-from riser.internal_flow import wall_tension
-from riser.result import SolveResult, Status
-from riser.scene import FixedEnds, HangOffAngleEnds, Scene, TopTensionEnds
+from riser.physics.internal_flow import wall_tension
+from riser.results.result import SolveResult, Status
+from riser.model.scene import FixedEnds, HangOffAngleEnds, Scene, TopTensionEnds
 
 from .budget import over_budget, peak_bytes
-from .equations import IY
-from .guess import BVPFailure, NoEquilibrium
-from .output import build_profile
-from .problem import _Problem, build_problem
-from .rod_output import build_rod_profile
-from .rod_problem import build_rod_problem, in_plane_scene, rigid_grounded_across
+from .beam.equations import IY
+from .beam.guess import BVPFailure, NoEquilibrium
+from .beam.output import build_profile
+from .beam.problem import _Problem, build_problem
+from .rod.output import build_rod_profile
+from .rod.problem import build_rod_problem, in_plane_scene, rigid_grounded_across
 from .strategy import (
     good,
     hopeless_span,
@@ -88,13 +88,13 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
     """Solve the static configuration of ``scene`` (see module docstring for the ends).
 
     A 3D scene (``scene.statics_planar`` False: a hang-off out of the anchor's plane, a
-    current out of the x-y plane) is solved as the 3D rod (bvp/rod_equations.py); ``three_d``
+    current out of the x-y plane) is solved as the 3D rod (bvp/rod/equations.py); ``three_d``
     True solves a planar scene that way too (the rod reduces to the planar equations),
     False refuses a 3D scene. ``dead_load``: a uniform load (qx, qy, qz) [N/m] per
     unstretched length in the scene's axes, added to the weight (closed-form checks; the
     rod).
 
-    Never raises on non-convergence: the result has a :class:`~riser.result.Status` other
+    Never raises on non-convergence: the result has a :class:`~riser.results.result.Status` other
     than converged and a message saying why; a scene the method cannot represent (a slug
     in the internal flow, a second touchdown, a problem whose solve could take more than
     [bvp] memory_budget: bvp/budget.py, a rigid seabed's grounded line under a current
@@ -201,7 +201,7 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
             profile.z = np.full_like(profile.s, scene.ends.anchor_point[2])   # its plane
         if scene.internal_flow is not None:
             # steady flow: no term in the shape equations (T is Fylling's effective
-            # tension), one in the wall tension (riser/internal_flow.py)
+            # tension), one in the wall tension (riser/physics/internal_flow.py)
             profile.wall_tension = wall_tension(scene, profile.s, profile.y, profile.tension)
         if scene.design is not None:
             design_checks.apply(scene, profile)       # stresses, utilisation (riser/design)

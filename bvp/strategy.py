@@ -12,14 +12,14 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from riser.result import Status
-from riser.scene import FixedEnds, Scene, TopTensionEnds
-from riser.sections import segment_properties
-from riser.settings import BVPSettings
+from riser.results.result import Status
+from riser.model.scene import FixedEnds, Scene, TopTensionEnds
+from riser.model.sections import segment_properties
+from riser.model.settings import BVPSettings
 
 from .collocation import solve_bvp
-from .equations import IT, IY, LiftOffOutside
-from .guess import (
+from .beam.equations import IT, IY, LiftOffOutside
+from .beam.guess import (
     fold_back,
     metres,
     span_words,
@@ -40,7 +40,7 @@ def _run(prob, tau: np.ndarray, Y: np.ndarray, p: np.ndarray, settings: BVPSetti
             return solve_bvp(lambda t, y: model.rhs(t, y, p), prob.bc, tau, Y,
                              fun_jac=lambda t, y: model.jac(t, y, p)[0], **kw)
         except LiftOffOutside as exc:
-            # stopped at once: the Newton iterate left the form (bvp/equations.py)
+            # stopped at once: the Newton iterate left the form (bvp/beam/equations.py)
             return SimpleNamespace(success=False, status=3, message=str(exc), x=tau, y=Y,
                                    p=p, niter=0, sol=None, rms_residuals=None)
 
@@ -112,7 +112,7 @@ def _load_factor(model):
 
 def _cross_loads(model):
     """(name, set_lam, where, largest step) of the continuation of the 3D rod
-    (bvp/rod_equations.py) from its loads in the plane (the in-plane current: a planar
+    (bvp/rod/equations.py) from its loads in the plane (the in-plane current: a planar
     problem) to the full ones, lam scaling the current and dead load across the plane;
     None for a planar model or one with nothing across its plane."""
     if not getattr(model, "cross_loads", False):
@@ -223,7 +223,7 @@ SECOND_CONTACT_DEPTH = 0.03
 def hopeless_span(scene: Scene) -> str:
     """Why a fixed-ends line on a seabed cannot have an equilibrium of the BVP's forms
     (too long for the span: it would fold back), or a J-lay top tension cannot hold a line
-    that reaches the seabed (:func:`bvp.guess.top_tension_reach`), else ''. Geometry and
+    that reaches the seabed (:func:`bvp.beam.guess.top_tension_reach`), else ''. Geometry and
     weights only, before any guess is built."""
     ends = scene.ends
     if isinstance(ends, TopTensionEnds):
@@ -263,7 +263,7 @@ def hopeless_start(scene: Scene, prob, tau: np.ndarray) -> tuple[Status, str] | 
     end in a valid equilibrium of its form, else None:
 
     - a free-hanging form (no seabed contact) with a line heavier than water longer than
-      any seabed could hold (:func:`bvp.guess.too_long_for_seabed`): its catenary hangs
+      any seabed could hold (:func:`bvp.beam.guess.too_long_for_seabed`): its catenary hangs
       far below the seabed y = 0 (:attr:`Status.NO_EQUILIBRIUM`);
     - a one-contact form whose catenary passes below the seabed by more than
       ``SECOND_CONTACT_DEPTH`` of the hang-off height away from the bottom contact: a
@@ -276,7 +276,7 @@ def hopeless_start(scene: Scene, prob, tau: np.ndarray) -> tuple[Status, str] | 
     S = m.s_of(tau, prob.guess_p)                           # their arc lengths [m]
     if prob.form == "fixed_free" and getattr(scene.ends, "tensioner", None) is None:
         # a line no seabed could hold either (too long for the span); a shorter one that
-        # dips below y = 0 is solved and warned about (below_seabed, riser.validity). A
+        # dips below y = 0 is solved and warned about (below_seabed, riser.results.validity). A
         # tensioner frees the top's height (its stroke): no span bounds the line's length
         (xa, ya), (xh, yh) = ends = scene.ends.anchor, scene.ends.hang_off
         L = m.piece_lengths(prob.guess_p)

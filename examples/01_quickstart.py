@@ -26,7 +26,7 @@ matplotlib.use("Agg")                       # write files only, no display neede
 import matplotlib.pyplot as plt  # noqa: E402
 
 from verification.catalog import resolve  # noqa: E402
-from verification.comparison.protocol import compare  # noqa: E402
+from verification.comparison.static.protocol import compare  # noqa: E402
 from verification.pipeline import solve_scene  # noqa: E402
 
 out = Path(sys.argv[1] if len(sys.argv) > 1

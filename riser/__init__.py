@@ -3,9 +3,9 @@ contract of every method (the only code the methods share)."""
 
 from .errors import SceneError, SolveFailed, UnsupportedSceneError
 from .io.scene_file import load_scene, parse_scene, scene_from_dict
-from .profile import Profile, summarize
-from .result import DynamicsResult, SolveResult, Status
-from .scene import (
+from .results.profile import Profile, summarize
+from .results.result import DynamicsResult, SolveResult, Status
+from .model.scene import (
     Current,
     Dynamics,
     Ends,
@@ -20,8 +20,8 @@ from .scene import (
     TopMotion,
     TopTensionEnds,
 )
-from .sections import SegmentProperties, segment_properties
-from .settings import AnalyticSettings, BVPSettings, VFIFESettings
+from .model.sections import SegmentProperties, segment_properties
+from .model.settings import AnalyticSettings, BVPSettings, VFIFESettings
 
 __all__ = [
     "AnalyticSettings",

@@ -49,7 +49,7 @@ class UnsupportedSceneError(ValueError):
 class SolveFailed(RuntimeError):
     """A solve that a larger job depends on did not converge (e.g. the BVP a fixed-ends
     conversion starts from, or one method of a comparison). ``method`` names the method
-    and ``status`` (a :class:`riser.result.Status`) says how it ended."""
+    and ``status`` (a :class:`riser.results.result.Status`) says how it ended."""
 
     def __init__(self, method: str, status, message: str):
         self.method = method

@@ -1,7 +1,7 @@
 """Field specs: the type, allowed range, unit and meaning of every key of a scene, written
 once and checked on every construction.
 
-Each part of a scene (:class:`~riser.line.LineType`, :class:`~riser.line.Segment`, the
+Each part of a scene (:class:`~riser.model.line.LineType`, :class:`~riser.model.line.Segment`, the
 current, the seabed, the end forms, the dynamics, the internal flow, the solver settings
 and the scene itself) is a frozen dataclass whose fields are declared with :func:`spec`.
 Its ``__post_init__`` calls :func:`check_fields` (then its own cross-field checks), so a
@@ -18,7 +18,7 @@ settings are tables with a name of their own (``KEY_PREFIX``: ``bvp``, ``analyti
 ``vfife``): their errors always carry it (``vfife.expert.static_damping``).
 
 A default is written once, as the field's default; the key tables of docs/scene-files.md
-are generated from these specs (:mod:`riser.spec_docs`).
+are generated from these specs (:mod:`riser.model.spec_docs`).
 """
 
 from __future__ import annotations
@@ -33,6 +33,9 @@ from dataclasses import dataclass
 from typing import Any
 
 from .errors import SceneError
+
+#: the largest coordinate or height [m] (100 km): the range of every position key
+MAX_COORDINATE = 1.0e5
 
 #: the kinds of value a spec describes ('part': a nested part, checked by its own class)
 KINDS = ("number", "integer", "boolean", "string", "numbers", "strings", "part")

@@ -420,7 +420,7 @@ def solve_outcome(tally: Tally, method: str, scene: Any, inp: Input, *, budget: 
 
 
 def _solve_classified(tally, counts, method, fn, scene, kwargs, inp, budget) -> str:
-    from riser.result import SolveResult, Status
+    from riser.results.result import SolveResult, Status
     try:
         with time_limit(budget):
             res = fn(scene, **kwargs)
@@ -574,15 +574,15 @@ def _spec_bounds() -> list[float]:
     """Every bound of the scene's field specs, and the floats next to it (boundary values)."""
     out: set[float] = set()
     try:
-        import riser.dynamics
-        import riser.ends
-        import riser.environment
-        import riser.internal_flow
-        import riser.line
-        import riser.scene
-        import riser.settings
-        mods = (riser.scene, riser.line, riser.ends, riser.environment, riser.dynamics,
-                riser.settings, riser.internal_flow)
+        import riser.physics.dynamics
+        import riser.model.ends
+        import riser.physics.environment
+        import riser.physics.internal_flow
+        import riser.model.line
+        import riser.model.scene
+        import riser.model.settings
+        mods = (riser.model.scene, riser.model.line, riser.model.ends, riser.physics.environment, riser.physics.dynamics,
+                riser.model.settings, riser.physics.internal_flow)
         for mod in mods:
             for obj in vars(mod).values():
                 if isinstance(obj, type) and dataclasses.is_dataclass(obj):

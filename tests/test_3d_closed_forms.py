@@ -15,7 +15,7 @@ weight), checked against statements that do not come from either solver:
    plane tilted by atan(q / w): sag along the resultant, end tension, tilt = q / w.
 
 The closed form (:func:`elastic_string`) is Irvine's elastic catenary written here from
-its statement, independently of bvp/catenary.py and every solver helper: a string of
+its statement, independently of bvp/beam/catenary.py and every solver helper: a string of
 unstretched length L and axial stiffness EA under a load q per unstretched length of fixed
 direction, normal to its chord of length ``span``; with H the force component along the
 chord and V = q L / 2 at each end, at the unstretched arc length p from one end,
@@ -197,7 +197,7 @@ def rotated(planar, s):
     ``s`` and the moment vector's components across the tangent (in the line's vertical
     plane, out of it). The planar moment vector M e_z (M >= 0 on a sagging catenary) and
     tangent (cos th, sin th, 0) turn with (0, -1, 0) -> (0, -c, s), c = w / W, s = q / W,
-    so the 3D columns of riser.frame (b = unit(t x e_z)) read
+    so the 3D columns of riser.model.frame (b = unit(t x e_z)) read
     moment_in_plane = M c / r, moment_out_of_plane = -M s cos(th) / r,
     r = sqrt(cos^2 th + c^2 sin^2 th)."""
     c, sn = W1 / W1R, Q1 / W1R
@@ -405,7 +405,7 @@ def test_a_weightless_stiff_line_under_a_light_load_is_not_stopped_short():
     # weightless line (EA 1e9 N) under 0.1 N/m sideways stopped "converged" 22 % short of
     # the closed-form deflection (0.027 N out of balance on a node carrying 0.1 N). The
     # residual scale is now the element's largest load (weight, dead load, drag;
-    # vfife.relaxation.weight_scale): measured -0.13 % (the round-off floor of the
+    # vfife.statics.relaxation.weight_scale): measured -0.13 % (the round-off floor of the
     # element forces, EA/l0 x ulp(x) ~ 2e-4 N a node, 0.2 % of the nodal load); 0.5 %
     # leaves room for that floor on another machine and fails the former 22 % by 44x.
     L, EA, q = 99.99, 1.0e9, 0.1

@@ -19,10 +19,10 @@ import analytic
 import bvp
 from analytic.catenary import Catenary, bending_correction, vertex_length_for_height
 from analytic.layers import anchor_layer, touchdown_layer
-from riser.result import Status
-from riser.scene import FixedEnds, HangOffAngleEnds, TopTensionEnds
-from riser.sections import segment_properties
-from riser.settings import AnalyticSettings
+from riser.results.result import Status
+from riser.model.scene import FixedEnds, HangOffAngleEnds, TopTensionEnds
+from riser.model.sections import segment_properties
+from riser.model.settings import AnalyticSettings
 from verification.catalog import builtin_paths, resolve
 
 KANG = "kang2015-jlay"

@@ -31,7 +31,7 @@ import bvp
 from analytic.catenary import Catenary, bending_correction
 from analytic.layers import layer_length
 from analytic.search import DELTA_LIMIT, EPS_LIMIT, RootNotFound, root
-from riser.result import Status
+from riser.results.result import Status
 
 #: the reproducers' line types
 TAUT_PIPE = {"outer_diameter": 0.03, "mass_per_length": 2.0, "axial_stiffness": 1.0e7,

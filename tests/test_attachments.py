@@ -113,7 +113,7 @@ def test_the_bvp_tends_to_the_two_catenaries_as_the_bending_stiffness_vanishes()
 
 
 def test_a_point_load_closes_the_bvps_force_balance():
-    # the BVP's independent check (bvp/output.py): the ends' forces against the line's
+    # the BVP's independent check (bvp/beam/output.py): the ends' forces against the line's
     # weight and the point's, integrated; to round-off
     res = bvp.solve(scene(cable(mass=2000.0, volume=0.25, drag_area=1.0))).require()
     assert res.info["equilibrium_residual"] < 1e-8

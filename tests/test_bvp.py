@@ -13,8 +13,8 @@ from scipy.special import ellipe, ellipk
 import builders
 import bvp
 from riser.errors import UnsupportedSceneError
-from riser.result import Status
-from riser.scene import Current, FixedEnds, HangOffAngleEnds, Seabed
+from riser.results.result import Status
+from riser.model.scene import Current, FixedEnds, HangOffAngleEnds, Seabed
 from verification.catalog import resolve
 
 

@@ -79,7 +79,7 @@ MEASURE = textwrap.dedent("""
     import sys, warnings
     import numpy as np
     from scipy.integrate import solve_bvp
-    from bvp.problem import build_problem
+    from bvp.beam.problem import build_problem
     from verification.catalog import resolve
     split, m = sys.argv[1] == "split", int(sys.argv[2])
     prob = build_problem(resolve("yu2021-a3"), split)

@@ -4,7 +4,7 @@ right-hand side (``BeamModel.rhs``): d rhs/dY and d rhs/dp, for every kind of te
 solve_bvp takes ``jac`` on trust: a wrong entry does not give a wrong solution (the
 residual is the rhs's), but slow or failed Newton iterations, i.e. spurious "did not
 converge" results. So each term is checked here, in the model the solver builds
-(``bvp.problem.build_problem``) for built-in scenes:
+(``bvp.beam.problem.build_problem``) for built-in scenes:
 
 - (a) the inextensible Wang form without current (and the extensible one);
 - (b) Morison drag, planar: a uniform current, a sheared one (dV/dy) and one that
@@ -15,7 +15,7 @@ converge" results. So each term is checked here, in the model the solver builds
   rigid seabed with the anchor on it, the contact-zone split;
 - (e) the contact-zone split form (linear spring in block 0, the lift-off point s_L = p
   entering the zone block and the line block's first piece with opposite signs);
-- (f) the joints' blends (bvp/layout.py): nodes inside every gap and at its two ends,
+- (f) the joints' blends (bvp/beam/layout.py): nodes inside every gap and at its two ends,
   where the coefficients of two pieces mix, and d rhs/dp where piece 0 mixes with
   piece 1.
 
@@ -25,7 +25,7 @@ each state component's RMS, so that no entry is trivially zero (the guess has
 theta = M = F = 0 on the seabed), the heights by 1 % of
 themselves (the line lying on the seabed, y = -w/k ~ -4 mm, stays in contact) and the free
 length(s) by 1 %. The rhs is smooth except at a few kinks where the analytic Jacobian is one
-branch's (bvp/equations.py): the unilateral reaction k max(-y, 0) at y = 0, the
+branch's (bvp/beam/equations.py): the unilateral reaction k max(-y, 0) at y = 0, the
 piecewise-linear current V(y) at its given heights, and the drag s|s| (C1 but not C2) at
 zero relative velocity (V = 0, or theta a multiple of pi/2). A difference stencil across
 a kink measures an average of two branches (an O(1) mismatch at y = 0, see
@@ -33,7 +33,7 @@ a kink measures an average of two branches (an O(1) mismatch at y = 0, see
 is moved two difference steps away from every kink (``_away_from_kinks``); nowhere else.
 
 Tolerance. Each column j is differenced with the step h_j = 1e-6 max(1, |Y_j|) (the state
-is scaled to O(1), bvp/problem.py). Central differences err by h^2/6 |f'''| (truncation,
+is scaled to O(1), bvp/beam/problem.py). Central differences err by h^2/6 |f'''| (truncation,
 ~2e-13 relative for terms that vary on O(1) scales of the scaled state: trigonometric,
 polynomial, piecewise-linear V) plus ~eps |terms of f_i| / h (round-off, eps/h = 2.2e-10
 relative to the size of the terms summed in f_i, which can cancel). So the discrepancy of
@@ -52,9 +52,9 @@ import functools
 import numpy as np
 import pytest
 
-from bvp.equations import IF, ITH, IY, NSTATE
-from bvp.problem import build_problem
-from riser.scene import FixedEnds, HangOffAngleEnds, Seabed
+from bvp.beam.equations import IF, ITH, IY, NSTATE
+from bvp.beam.problem import build_problem
+from riser.model.scene import FixedEnds, HangOffAngleEnds, Seabed
 from verification.catalog import resolve
 
 REL_STEP = 1.0e-6      # relative difference step per component (see the module docstring)
@@ -363,7 +363,7 @@ def test_a_jacobian_without_the_blend_is_detected(case_id):
     # piece's pure coefficients) against the differences of the blended model: the gap
     # nodes report it; and d rhs/dp left out inside the gap of joint 1 (measured 1.2 and
     # 5.1, 0.87 and 0.89: O(1), against TOL 1e-7)
-    from bvp.layout import Layout
+    from bvp.beam.layout import Layout
     _, prob, tau, Y, p = _case(case_id)
     model = prob.model
     lay = model.layout

@@ -1,4 +1,4 @@
-"""The BVP on one arc-length domain (bvp/layout.py, bvp/equations.py): the joints as mesh
+"""The BVP on one arc-length domain (bvp/beam/layout.py, bvp/beam/equations.py): the joints as mesh
 points with a blended right-hand side across a tiny gap, runs of identical segments as
 one piece, and the cost independent of the segment count.
 
@@ -25,10 +25,10 @@ import numpy as np
 import pytest
 
 import bvp
-import bvp.layout
+import bvp.beam.layout
 from bvp.bench import discrete_modules, split_segments
-from bvp.layout import Layout
-from bvp.problem import build_problem
+from bvp.beam.layout import Layout
+from bvp.beam.problem import build_problem
 from verification.catalog import resolve
 
 
@@ -59,8 +59,8 @@ def test_the_starting_mesh_holds_a_node_pair_at_every_joint():
     for t in lay.edges[1:-1]:
         assert np.any(tau == t - lay.gap) and np.any(tau == t + lay.gap)
         assert not np.any((tau > t - lay.gap) & (tau < t + lay.gap))   # nothing inside
-    assert np.all(lay.counts(0) == bvp.layout.MIN_PIECE_NODES)
-    assert lay.gap == bvp.layout.GAP
+    assert np.all(lay.counts(0) == bvp.beam.layout.MIN_PIECE_NODES)
+    assert lay.gap == bvp.beam.layout.GAP
 
 
 def test_arc_length_and_tau_are_inverse():
@@ -92,7 +92,7 @@ def test_the_gap_changes_the_solution_as_its_square_far_below_the_tolerance(monk
     scene = resolve("yu2021-a3")
     res = {}
     for g in (1e-6, 1e-7, 1e-8):
-        monkeypatch.setattr(bvp.layout, "GAP", g)
+        monkeypatch.setattr(bvp.beam.layout, "GAP", g)
         res[g] = bvp.solve(scene)
         assert res[g].converged
     assert res[1e-6].info["nodes"] == res[1e-7].info["nodes"] == res[1e-8].info["nodes"]
@@ -128,7 +128,7 @@ def test_the_first_segment_stays_apart_where_its_length_is_the_unknown():
     segs = list(sc.segments)
     halves = [dataclasses.replace(segs[0], length=segs[0].length / 2)] * 2
     sc = sc.replace(segments=tuple(halves + segs[1:]))
-    from riser.scene import HangOffAngleEnds
+    from riser.model.scene import HangOffAngleEnds
     inv = sc.replace(ends=HangOffAngleEnds(hang_off_height=1586.3, hang_off_angle_deg=78.88))
     prob = build_problem(inv, True)
     assert prob.model.n_seg == 4 and prob.model.free_first_length
@@ -148,7 +148,7 @@ def test_a_lazy_wave_of_53_segments_has_sharp_joints():
     assert r.info["equilibrium_residual"] < 1e-5
     p = r.profile
     w = np.array([s.length for s in sc.segments])
-    from riser.sections import segment_properties
+    from riser.model.sections import segment_properties
     weights = np.array([q.weight for q in segment_properties(sc)])
     joints = np.cumsum(w)[:-1]
     checked = 0

@@ -1,4 +1,4 @@
-"""BVP modal analysis (bvp/modes.py): closed forms of a taut string, a pinned beam and the
+"""BVP modal analysis (bvp/modal/modes.py): closed forms of a taut string, a pinned beam and the
 normal-only added mass, a real riser, and the refusals.
 
 Every closed form is the exact eigenvalue of a straight, weightless line between pinned,
@@ -25,8 +25,8 @@ import pytest
 
 import builders
 import bvp
-from bvp.modes import solve_modes
-from riser.modes import PLANES
+from bvp.modal.modes import solve_modes
+from riser.results.modes import PLANES
 from verification.catalog import resolve
 
 RTOL = 1e-6          # see the module docstring

@@ -1,4 +1,4 @@
-"""The BVP's 3D rod (bvp/rod_equations.py, bvp/rod_problem.py): its analytic Jacobian
+"""The BVP's 3D rod (bvp/rod/equations.py, bvp/rod/problem.py): its analytic Jacobian
 against finite differences, its reduction to the planar equations on every built-in
 planar scene, its symmetries (a hang-off out of the anchor's plane, a current reversed
 across the plane) and its refusals."""
@@ -10,12 +10,12 @@ import pytest
 
 import bvp
 from bvp.collocation import unpruned
-from bvp.rod_equations import IF2, IM2, IPH, IZ, NROD
-from bvp.rod_problem import build_rod_problem
-from riser.environment import Current
+from bvp.rod.equations import IF2, IM2, IPH, IZ, NROD
+from bvp.rod.problem import build_rod_problem
+from riser.physics.environment import Current
 from riser.errors import SceneError
 from verification.catalog import builtin_paths, resolve
-from verification.comparison.protocol import compare
+from verification.comparison.static.protocol import compare
 
 from builders import line, pipe, scene
 

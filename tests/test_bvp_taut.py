@@ -1,8 +1,8 @@
 """Taut and nearly taut lines of any weight by the BVP (issue 29).
 
 The start of a line between pinned ends is the elastic catenary, solved by two nested,
-bracketed root finds (``bvp.catenary.pinned``) in cancellation-free closed forms
-(``bvp.catenary._segment_offsets``); where the catenary dips into an elastic seabed the
+bracketed root finds (``bvp.beam.catenary.pinned``) in cancellation-free closed forms
+(``bvp.beam.catenary._segment_offsets``); where the catenary dips into an elastic seabed the
 unilateral form walks the seabed stiffness up from none (``bvp.strategy``). Checked here
 against an independent closed form: Irvine's elastic catenary written out below in 40-digit
 arithmetic (the standard library's ``decimal``) and solved by Newton's method with its
@@ -25,7 +25,7 @@ import pytest
 
 from builders import line, scene, small_pipe
 import bvp
-from bvp.catenary import _segment_offsets, end_offsets, end_offsets_rows, \
+from bvp.beam.catenary import _segment_offsets, end_offsets, end_offsets_rows, \
     horizontal_tensions, pinned
 
 DIGITS = 40                                     # of the closed form (decimal)
@@ -293,11 +293,11 @@ def test_the_taut_line_grid_converges_wherever_an_equilibrium_exists():
 
 @pytest.mark.parametrize("name", ["scr-steel", "yu2021-a3"])
 def test_the_grid_at_once_gives_the_guess_of_the_point_by_point_scan(name):
-    # the bench's reference (bvp.guess.SCALAR_GRID: the scan before issue 36, each grid
+    # the bench's reference (bvp.beam.guess.SCALAR_GRID: the scan before issue 36, each grid
     # point's H by Brent and the end by sampling the catenary's state) and the grid at
     # once find the same bracket and then the same root by the same scalar search: the
     # same guess, so the same solve, bit for bit
-    from bvp.guess import SCALAR_GRID
+    from bvp.beam.guess import SCALAR_GRID
     from verification.catalog import resolve
     import bvp
     sc = resolve(name)

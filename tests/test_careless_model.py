@@ -17,8 +17,8 @@ import pytest
 
 from riser.errors import SceneError
 from riser.io.scene_file import parse_scene
-from riser.result import SolveResult, Status
-from riser.transform import fixed_ends_scene
+from riser.results.result import SolveResult, Status
+from riser.model.transform import fixed_ends_scene
 from verification.catalog import builtin_paths
 from verification.pipeline import VfifeEquivalent, conversion_warnings
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 import pytest
 
 from verification.catalog import resolve
-from verification.comparison.protocol import compare
+from verification.comparison.static.protocol import compare
 
 ROWS_3D = ("moment_out_of_plane", "max_lateral_offset", "tdp_lateral",
            "max_moment_out_of_plane")

@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from riser.profile import Profile, summarize
-from verification.comparison.agreement import agreement
+from riser.results.profile import Profile, summarize
+from verification.comparison.static.agreement import agreement
 from verification.comparison.tolerances import tolerance_value
 from verification.quantities import curve_distance
 
@@ -118,9 +118,9 @@ def test_tolerances_within_the_issue_targets():
 
 
 def _comparison(rows, paper_rows=()):
-    from riser.result import SolveResult, Status
+    from riser.results.result import SolveResult, Status
     from verification.catalog import resolve
-    from verification.comparison.protocol import Comparison
+    from verification.comparison.static.protocol import Comparison
     sc = resolve("wang2014-baseline")
     res = SolveResult("bvp", sc.name, Status.CONVERGED, "ok", _line(), info={"nodes": 10})
     return Comparison(sc, sc, 0.0, 100.0, res, res, list(rows), matched_scene=sc,
@@ -132,8 +132,8 @@ def test_agreement_csv_columns_are_the_contract():
     # this order, whatever extra keys the rows carry for the report; each further column
     # that ran appends its two (NAME, NAME_rel_diff: the analytic method's, empty where it
     # does not apply; a peer's with --peer NAME), the first seven unchanged
-    from verification.comparison.agreement import AGREEMENT_COLUMNS
-    from verification.comparison.columns import ColumnResult
+    from verification.comparison.static.agreement import AGREEMENT_COLUMNS
+    from verification.comparison.static.columns import ColumnResult
     p = _line()
     comp = _comparison(agreement(p, _line(dx=0.1), depth=60.0))
     assert AGREEMENT_COLUMNS == ("quantity", "bvp", "vfife", "abs_diff", "rel_diff",
@@ -149,7 +149,7 @@ def test_agreement_csv_columns_are_the_contract():
 
 
 def test_verdict_ignores_the_paper_model_rows_and_report_reads():
-    from verification.comparison.report import report_markdown
+    from verification.comparison.static.report import report_markdown
     p = _line()
     q = _line()
     q.tension = p.tension * (1.0 + 1e-14)       # round-off, not a difference
@@ -289,7 +289,7 @@ def test_a_moment_the_elements_cannot_resolve_is_shown_not_judged():
     # below a 1 m element: the moment rows are not judged (pass None, the reason noted),
     # the others still are; a steel pipe's (EI 1e8: 31.6 m) are judged
     from riser.io.scene_file import scene_from_dict
-    from verification.comparison.agreement import MOMENT_ROWS, unresolved_bending
+    from verification.comparison.static.agreement import MOMENT_ROWS, unresolved_bending
     def line(EI):
         return scene_from_dict({"name": "l", "line_types": {"c": {
             "outer_diameter": 0.1, "mass_per_length": 10.0, "axial_stiffness": 1e9,

@@ -1,4 +1,4 @@
-"""The result contract (riser/result.py) and the typed solver settings (riser/settings.py):
+"""The result contract (riser/results/result.py) and the typed solver settings (riser/model/settings.py):
 every run ends in a status, summary.json says which, the CLI maps it to its documented exit
 code in one line, the stress suite reads the status (never the message), and a
 programmatic setting is validated like the scene file's key."""
@@ -13,8 +13,8 @@ import bvp
 import vfife
 from riser.errors import SceneError
 from riser.io.scene_file import parse_scene
-from riser.result import SolveResult, Status
-from riser.settings import BVPSettings, VFIFESettings
+from riser.results.result import SolveResult, Status
+from riser.model.settings import BVPSettings, VFIFESettings
 from verification import pipeline
 from verification.catalog import resolve
 from verification.studies import stress

@@ -31,7 +31,7 @@ import pytest
 import builders
 import bvp
 import vfife
-from riser.scene import FixedEnds, TdpTensionEnds
+from riser.model.scene import FixedEnds, TdpTensionEnds
 from verification.quantities import raw_values
 from verification.studies import cost
 from verification.studies.cost import assessment, fits, records, settings

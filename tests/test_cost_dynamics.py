@@ -231,8 +231,8 @@ def test_a_node_in_air_loses_its_added_mass_and_part_of_its_stable_step():
     sqrt(m / (m + m_a)): the dynamics takes its step without the added mass when the heave
     can bring nodes out of the water (Yu's flexible pipe: 0.75, so factor 0.8 blew up at
     0.25 m before), and with it when the line stays deep."""
-    from riser.scene import Dynamics, TopMotion
-    from vfife.dynamics import run_dynamics
+    from riser.model.scene import Dynamics, TopMotion
+    from vfife.dynamics.run import run_dynamics
     from vfife.mesh import build_mesh
     sc = hanging_surface_line()
     static = vfife.solve(sc, element_length=2.0)

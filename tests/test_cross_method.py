@@ -14,13 +14,13 @@ import dataclasses
 import pandas as pd
 import pytest
 
-from riser.scene import FixedEnds
-from riser.settings import VFIFESettings
-from riser.transform import DEFAULT_SEABED_STIFFNESS
+from riser.model.scene import FixedEnds
+from riser.model.settings import VFIFESettings
+from riser.model.transform import DEFAULT_SEABED_STIFFNESS
 from verification.catalog import resolve
-from verification.comparison.agreement import AGREEMENT_COLUMNS
-from verification.comparison.protocol import compare
-from verification.comparison.report import report_markdown, write
+from verification.comparison.static.agreement import AGREEMENT_COLUMNS
+from verification.comparison.static.protocol import compare
+from verification.comparison.static.report import report_markdown, write
 
 
 def failing(comp):

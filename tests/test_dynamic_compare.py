@@ -1,4 +1,4 @@
-"""The dynamic comparison (verification/comparison/dynamics.py): the frequency domain
+"""The dynamic comparison (verification/comparison/dynamic/protocol.py): the frequency domain
 about the BVP static state against the VFIFE's time domain, its negative controls, the
 harmonic fit, and bad input ending in one line.
 
@@ -18,16 +18,16 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from bvp.harmonic import solve_harmonic, transfer_sweep
-from riser.dynamics import Dynamics, TopMotion
-from riser.environment import Current
+from bvp.frequency.harmonic import solve_harmonic, transfer_sweep
+from riser.physics.dynamics import Dynamics, TopMotion
+from riser.physics.environment import Current
 from riser.errors import SceneError
-from riser.response import motion_amplitudes
-from riser.result import Status
+from riser.physics.hang_off_motion import motion_amplitudes
+from riser.results.result import Status
 from verification.catalog import builtin_paths, resolve
 from verification.comparison import harmonics
-from verification.comparison.dynamic_rows import TOLERANCES
-from verification.comparison.dynamics import compare_dynamics
+from verification.comparison.dynamic.rows import TOLERANCES
+from verification.comparison.dynamic.protocol import compare_dynamics
 
 PERIOD = 5.8
 
@@ -174,7 +174,7 @@ def test_cli_bad_input_is_one_line_exit_2(run_cli, tmp_path, argv, words):
 
 def test_internal_flow_is_refused_by_the_frequency_domain():
     """Flowing contents are not harmonic about a static state: refused, naming the key."""
-    from riser.internal_flow import InternalFlow
+    from riser.physics.internal_flow import InternalFlow
     sc = _scene(**{"line_types.steel.contents_density": 800.0}).replace(
         internal_flow=InternalFlow(speed=3.0))
     r = solve_harmonic(sc, PERIOD)
@@ -186,7 +186,7 @@ def test_a_response_that_goes_slack_is_outside_the_linear_model(scene, agreed):
     slack_over_cycle and its rows are not judged (here the FD's own response stands in
     for the VFIFE's: the rows compare a result with itself, so only the slack rule can
     withhold the verdict)."""
-    from verification.comparison.dynamic_rows import agreement_rows
+    from verification.comparison.dynamic.rows import agreement_rows
     fd = solve_harmonic(scene, PERIOD, motion_amplitudes("x", 40.0), static=agreed.static,
                         check_grid=False)
     assert fd.converged, fd.message

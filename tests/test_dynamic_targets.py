@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import pytest
 
-from verification.comparison.dynamics import compare_dynamics
+from verification.comparison.dynamic.protocol import compare_dynamics
 from verification.studies.dynamics import PERIODS, SMALL, _with_motion, study_scene
 
 pytestmark = pytest.mark.slow

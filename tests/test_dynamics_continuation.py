@@ -1,7 +1,7 @@
 """A dynamic run continued from a checkpoint is the run that never stopped (issue 36).
 
 The dynamic comparison doubles the settling of a window that drifts by continuing the
-run from a checkpoint (verification/comparison/dynamic_vfife.py) where it used to start
+run from a checkpoint (verification/comparison/dynamic/vfife_side.py) where it used to start
 again at t = 0: the continued run's states, envelope and window statistics must be those
 of the run started again, bit for bit (the same arithmetic on the same state)."""
 
@@ -13,9 +13,9 @@ import numpy as np
 
 import vfife
 from verification.catalog import resolve
-from verification.comparison.dynamic_vfife import continued
-from verification.comparison.dynamics import dynamic_scene
-from vfife.dynamics import run_dynamics
+from verification.comparison.dynamic.vfife_side import continued
+from verification.comparison.dynamic.protocol import dynamic_scene
+from vfife.dynamics.run import run_dynamics
 
 JUMPER = Path(__file__).resolve().parents[1] / "examples" / "scenes" / "flexible-jumper.toml"
 PERIOD, RAMP = 6.9, 3

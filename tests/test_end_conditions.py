@@ -23,12 +23,12 @@ from scipy.special import jn_zeros
 
 import bvp
 import vfife
-from bvp.modes import solve_modes as bvp_modes
+from bvp.modal.modes import solve_modes as bvp_modes
 from riser.errors import SceneError
-from riser.sections import segment_properties
+from riser.model.sections import segment_properties
 from verification.studies.ends import scenes as ends_scenes
 from verification.studies.ends.cases import clamp_closed_form
-from vfife.modes import solve_modes as vfife_modes
+from vfife.modal.modes import solve_modes as vfife_modes
 
 from builders import line, pipe, scene
 
@@ -235,7 +235,7 @@ def test_a_hanging_chain_released_in_its_first_mode_swings_at_the_bessel_frequen
     # time-domain model against its own modal analysis to the zero-crossing reading
     # (1e-3 over 6 periods), and both against the closed form to the 1 m mesh's
     # discretisation (-4e-5 at mode 1)
-    from vfife.modes import free_vibration
+    from vfife.modal.modes import free_vibration
     sc = scene(hanging_chain())
     p = segment_properties(sc)[0]
     f1 = jn_zeros(0, 1)[0] / 2.0 * math.sqrt(p.weight / p.mass / L) / (2 * math.pi)

@@ -56,7 +56,7 @@ from fuzz_strategies import (
 )
 from hypothesis import strategies as st
 
-from riser.scene import FixedEnds
+from riser.model.scene import FixedEnds
 from verification.catalog import resolve
 
 SEEDS = seed_dicts(SEED_PATHS)
@@ -426,7 +426,7 @@ class FeatureFuzz:
 
     def _path(self, scene, inp: Input) -> None:
         """The hang-off's prescribed path over the run: finite, or refused in one line."""
-        from riser.hang_off_motion import HangOffPath
+        from riser.physics.hang_off_motion import HangOffPath
         counts = self.tally.solve.setdefault("hang-off path", __import__("collections").Counter())
         try:
             with time_limit(10.0):
@@ -482,7 +482,7 @@ def solve_dynamic_outcome(tally: Tally, scene, inp: Input, budget: float) -> str
     import collections
 
     import vfife
-    from riser.result import Status
+    from riser.results.result import Status
     counts = tally.solve.setdefault("vfife dynamics", collections.Counter())
     try:
         with time_limit(budget):

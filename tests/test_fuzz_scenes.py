@@ -35,7 +35,7 @@ from fuzz_strategies import (
 )
 from hypothesis import strategies as st
 
-from riser.scene import FixedEnds
+from riser.model.scene import FixedEnds
 from verification.catalog import resolve
 
 SEEDS = seed_dicts(SEED_PATHS)

@@ -39,7 +39,7 @@ from fuzz_strategies import (
 from hypothesis import strategies as st
 
 from riser.io.scene_file import parse_scene
-from riser.scene import FixedEnds
+from riser.model.scene import FixedEnds
 from verification.catalog import builtin_paths
 from verification.sweeps.file import MAX_CASES, SWEEP_DIR, load_sweep
 

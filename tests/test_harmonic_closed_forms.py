@@ -1,5 +1,5 @@
 """Closed forms and exact balances of the frequency-domain harmonic response
-(``bvp.harmonic.solve_harmonic``).
+(``bvp.frequency.harmonic.solve_harmonic``).
 
 1. A weightless taut line (segment ``submerged_weight = 0``: the static line is exactly
    straight, tension EA (chord/L - 1) everywhere), pinned moment-free ends, no seabed, no
@@ -9,12 +9,12 @@
 2. The same line by the VFIFE in the time domain, first harmonic by
    ``verification.comparison.harmonics.fit``.
 3. Undamped, drag off (scr-steel): the response's poles are the natural frequencies of
-   ``bvp.modes.solve_modes``.
+   ``bvp.modal.modes.solve_modes``.
 4. With drag in still water (scr-steel): the work the hang-off does on the line per cycle
    equals the energy the drag (linearised, and nonlinear on the same velocity amplitude)
    and the structural and seabed dampers dissipate.
 
-Convention (riser/response.py): q(s, t) = q0 + Re(Q e^{i omega t}); the motion's complex
+Convention (riser/results/response.py): q(s, t) = q0 + Re(Q e^{i omega t}); the motion's complex
 amplitudes D = (D_x, D_y, D_z) [m]; s the unstretched arc length from the anchor.
 """
 
@@ -28,13 +28,13 @@ from scipy.interpolate import CubicSpline
 
 from builders import line, scene, small_pipe, straight
 import bvp
-from bvp import harmonic_equations as he
-from bvp.harmonic import solve_harmonic
-from bvp.modal_equations import build_pieces
-from bvp.modes import solve_modes
-from riser.dynamics import Dynamics
-from riser.response import motion_amplitudes
-from riser.sections import segment_properties
+from bvp.frequency import equations as he
+from bvp.frequency.harmonic import solve_harmonic
+from bvp.modal.equations import build_pieces
+from bvp.modal.modes import solve_modes
+from riser.physics.dynamics import Dynamics
+from riser.physics.hang_off_motion import motion_amplitudes
+from riser.model.sections import segment_properties
 from verification.catalog import resolve
 from verification.comparison.harmonics import fit
 
@@ -66,7 +66,7 @@ def section(sc):
 
 def beam_transverse(s, D, T, EI, EA, mn, omega, cs):
     """Exact transverse amplitude of the tensioned extensible beam (pinned, moment-free
-    ends, u(0) = 0, u(L) = D). The model (bvp/modes.py, both families on a straight line,
+    ends, u(0) = 0, u(L) = D). The model (bvp/modal/modes.py, both families on a straight line,
     kappa = F = 0): w' = e psi, psi' = B/EI, B' = e (T psi - Q), Q' = -mn W2 w with
     e = 1 + T/EA and W2 = omega^2 - i omega c_s, i.e. (EI/e^2) u'''' - (T/e) u'' = mn W2 u
     in unstretched s. Roots of the characteristic equation: +-i k (the string's wave) and
@@ -337,7 +337,7 @@ def _end_derivative(s, q, points=5):
 
 def hang_off_work(sc, st, r) -> tuple[float, float]:
     """Work per cycle [J per cycle] of the hang-off on the line, total and that of its z
-    force. P = T t - F n (bvp/modes.py) is the force of the part above s on the part
+    force. P = T t - F n (bvp/modal/modes.py) is the force of the part above s on the part
     below: P(L) is the hang-off's force on the line. First order: dP = (dT + F0 dtheta)
     t0 + (T0 dtheta - dF) n0 (dt = dtheta n, dn = -dtheta t) with dtheta = (-sn dx' + c
     dy')/e (the in-plane rows), and z: Q = T0 psi - (B' + EI kappa0^2 psi)/e with psi =
@@ -371,7 +371,7 @@ def dissipation(sc, st, r, cs, zeta) -> dict:
     velocity is -v): c_n int |v_perp|^3 dt + c_t int |v_t|^3 dt over a cycle, the normal
     speed 2D (in-plane normal and z) by 256 phases, the tangential one in closed form
     (int |A cos|^3 dt = (8/3) A^3 / omega); 'linear': the equivalent linear dampers of
-    bvp.harmonic_equations on the same velocity amplitudes, pi omega C |u|^2; both plus the
+    bvp.frequency.equations on the same velocity amplitudes, pi omega C |u|^2; both plus the
     structural damping -c_s (m along the axis, m + m_a normal) v, pi omega c_s m |u|^2,
     and the seabed dashpot 2 zeta sqrt(k (m + m_a)) on dy in the static contact zone.
     'z': the out-of-plane share (c_n <|v_perp| v_z^2> and c_s (m + m_a) |w|^2)."""

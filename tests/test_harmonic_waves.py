@@ -1,10 +1,10 @@
-"""The frequency domain with waves (``bvp.wave_loads``, ``bvp.harmonic.solve_harmonic`` of a
-regular train, ``bvp.sea_response.solve_sea``), each check against a source independent
+"""The frequency domain with waves (``bvp.frequency.wave_loads``, ``bvp.frequency.harmonic.solve_harmonic`` of a
+regular train, ``bvp.frequency.sea_response.solve_sea``), each check against a source independent
 of the code under test:
 
 1. the BVP's wave kinematics: the deep-water limit, the finite-depth closed form written
-   out here, the free-surface conditions (the dispersion relation of riser.waves'
-   wave numbers) and continuity, the phase against riser.waves.elevation;
+   out here, the free-surface conditions (the dispersion relation of riser.physics.waves'
+   wave numbers) and continuity, the phase against riser.physics.waves.elevation;
 2. the wave load: the exact response of a taut weightless line to the Morison inertia
    load of a wave travelling along it (the pinned tensioned beam, solved here), and to
    the drag and inertia of a deep-water orbit across it (a circular relative velocity:
@@ -18,7 +18,7 @@ of the code under test:
    definitions.
 
 Conventions: q(s, t) = q0 + Re(Q e^{i omega t}); a component's elevation Re(a e^{-i (k
-xi + eps)} e^{i omega t}) (riser/waves.py).
+xi + eps)} e^{i omega t}) (riser/physics/waves.py).
 """
 
 from __future__ import annotations
@@ -31,19 +31,19 @@ from scipy import integrate
 
 from builders import catenary, line, scene, small_pipe
 import bvp
-from bvp import sea_response as sr
-from bvp import wave_loads as wl
-from bvp.harmonic import solve_harmonic
-from riser.hang_off_motion import scene_components
-from riser.result import Status
-from riser.sections import segment_properties
-from riser.waves import Waves, WaveTrain, elevation, wave_numbers
+from bvp.frequency import sea_response as sr
+from bvp.frequency import wave_loads as wl
+from bvp.frequency.harmonic import solve_harmonic
+from riser.physics.hang_off_motion import scene_components
+from riser.results.result import Status
+from riser.model.sections import segment_properties
+from riser.physics.waves import Waves, WaveTrain, elevation, wave_numbers
 
 G = 9.81
 
 
 def train(depth, period, heading=0.0, phase=0.0, height=2.0, origin=(0.0, 0.0)):
-    """The components of one regular train (riser.waves)."""
+    """The components of one regular train (riser.physics.waves)."""
     waves = Waves(trains=(WaveTrain(height=height, period=period, heading_deg=heading,
                                     phase_deg=phase),))
     return waves.components(depth, G, origin)
@@ -72,7 +72,7 @@ def test_deep_water_limit_without_overflow():
 def test_finite_depth_closed_form_and_phase(depth, period):
     """k h = 0.45, 1.4, 3.0: u_h = a omega cosh(k y)/sinh(k h), u_y = i a omega sinh(k
     y)/sinh(k h) (numpy's cosh, sinh directly) at points off the origin on a 30 deg
-    heading, phased as riser.waves.elevation says."""
+    heading, phased as riser.physics.waves.elevation says."""
     comp = train(depth, period, heading=30.0, phase=40.0, height=3.0, origin=(5.0, -2.0))
     k, w, b = comp.k[0], comp.omega[0], math.radians(30.0)
     rng = np.random.default_rng(3)
@@ -80,7 +80,7 @@ def test_finite_depth_closed_form_and_phase(depth, period):
     y = rng.uniform(0.0, depth, 20)
     u, _ = wl.kinematics(comp, 0, x, y, z)
     A = wl.elevation_amplitude(comp, 0, x, z)
-    # the phase: Re(A e^{i omega t}) is riser.waves' elevation at every t past its ramp
+    # the phase: Re(A e^{i omega t}) is riser.physics.waves' elevation at every t past its ramp
     # (two periods); measured <= 1.2e-14 m (a = 1.5 m)
     for t in (100.0, 101.3, 104.1):
         eta = elevation(comp, x, z, t)
@@ -101,7 +101,7 @@ def test_finite_depth_closed_form_and_phase(depth, period):
 def test_surface_conditions_and_continuity(depth, period):
     """At the mean level the linear free-surface conditions: u_y = d eta/dt (kinematic)
     and d u_h/dt = -g d eta/d xi (dynamic, the pressure constant there), which together
-    hold only if omega^2 = g k tanh(k h): the kinematics against riser.waves' dispersion
+    hold only if omega^2 = g k tanh(k h): the kinematics against riser.physics.waves' dispersion
     relation. Below, continuity d u_x/dx + d u_y/dy = 0 (central differences)."""
     comp = train(depth, period, phase=25.0)
     k, w = comp.k[0], comp.omega[0]

@@ -312,7 +312,7 @@ def test_the_touchdown_search_says_which_way_the_line_is_wrong():
     # 700 N/m: the message decides between too long, too short and the first segment
     import numpy as np
 
-    from bvp.guess import no_touchdown_reason
+    from bvp.beam.guess import no_touchdown_reason
     w = np.array([700.0, 700.0])
     assert no_touchdown_reason(w, np.array([10.0, 2990.0]), 1500.0, 1000.0).startswith(
         "the line is too long for the span: 3,000 m of line")

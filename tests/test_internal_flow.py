@@ -21,10 +21,10 @@ import pytest
 
 import bvp
 import vfife
-from riser.internal_flow import contents_mass_per_length
+from riser.physics.internal_flow import contents_mass_per_length
 from riser.io.scene_file import scene_from_dict
 from verification.catalog import builtin_paths
-from vfife.dynamics import run_dynamics
+from vfife.dynamics.run import run_dynamics
 
 
 def liu(flow: dict | None, dynamics: dict | None = None, h: float = 4.0):

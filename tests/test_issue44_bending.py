@@ -1,8 +1,8 @@
 """Issue 44, "Silent" 2 and 3: the bending validity check (a steel wall's bending strain
 against SMYS/E, a flexible's minimum_bend_radius) on every method's static profile and
 over a dynamic run's envelope, and the dynamic run's compression and emergence, each a
-named warning saying where (s) and, for dynamics, when (t) (riser/validity.py,
-riser/sections.py; the envelope's times and submergence: vfife/dynamic_outputs.py)."""
+named warning saying where (s) and, for dynamics, when (t) (riser/results/validity.py,
+riser/model/sections.py; the envelope's times and submergence: vfife/dynamics/outputs.py)."""
 
 from __future__ import annotations
 
@@ -13,10 +13,10 @@ import re
 import numpy as np
 import pytest
 
-from riser import validity
+from riser.results import validity
 from riser.errors import SceneError
 from riser.io.scene_file import load_scene, parse_scene
-from riser.sections import DEFAULT_STEEL_SMYS, bending_limit
+from riser.model.sections import DEFAULT_STEEL_SMYS, bending_limit
 from verification.catalog import builtin_paths
 from verification.pipeline import solve_scene
 

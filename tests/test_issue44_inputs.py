@@ -2,7 +2,7 @@
 naming the key (exit 2), or warned by name, against the issue's stated input and a closed
 form of the quantity the refusal measures.
 
-1. RAO motion (riser/sea_state.py check_vessel_motion): the hang-off path of a vessel in
+1. RAO motion (riser/physics/sea_state.py check_vessel_motion): the hang-off path of a vessel in
    regular trains and in a sea passes a top motion's limits (speed, acceleration) and the
    small-rotation model's 10 deg; the issue's pitch RAO 20 times too large is refused,
    naming the table, the DOF and the period.
@@ -29,12 +29,12 @@ import pytest
 
 import bvp
 from riser.design.part import Design
-from riser.dynamics import MAX_OUTPUT_SAMPLES, MAX_TOP_ACCELERATION, MAX_TOP_SPEED
+from riser.physics.dynamics import MAX_OUTPUT_SAMPLES, MAX_TOP_ACCELERATION, MAX_TOP_SPEED
 from riser.errors import SceneError
 from riser.io.scene_file import scene_from_dict
 from riser.io.toml_text import dumps
-from riser.sea_state import MAX_ROTATION_DEG
-from riser.vessel import DOFS
+from riser.physics.sea_state import MAX_ROTATION_DEG
+from riser.physics.vessel import DOFS
 from verification import cli
 
 ROOT = Path(__file__).resolve().parents[1]

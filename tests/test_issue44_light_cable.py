@@ -22,8 +22,8 @@ import pytest
 import bvp
 import vfife
 from verification.catalog import resolve
-from verification.comparison.dynamics import tightened_statics
-from vfife.statics import friction_engaged
+from verification.comparison.dynamic.protocol import tightened_statics
+from vfife.statics.equilibrium import friction_engaged
 
 FIXTURE = Path(__file__).parent / "scenes_issue44" / "light-cable-span.toml"
 
@@ -103,7 +103,7 @@ def test_light_cable_dynamic_comparison_passes_at_the_advised_length_and_small_a
     # 0.5 m elements left the top's moment layer 1.3 % off) every row passes (moment 0.29
     # %, tension 5e-5). Independent source: the frequency domain about the BVP's statics.
     # ~5 min (the VFIFE's 0.23 m elements over 24 periods)
-    from verification.comparison.dynamics import compare_dynamics
+    from verification.comparison.dynamic.protocol import compare_dynamics
     sc = resolve(str(FIXTURE))
     v = vfife.solve(_static(sc))
     advice = [w for w in v.warnings if "moment peaks" in w]

@@ -15,8 +15,8 @@ import pytest
 
 from riser.design.fatigue import SECONDS_PER_YEAR
 from verification.catalog import resolve
-from verification.comparison import dynamics_report
-from verification.comparison.dynamics import WAVE
+from verification.comparison.dynamic import report as dynamics_report
+from verification.comparison.dynamic.protocol import WAVE
 from verification.report import dynamics as dyn_report
 from verification.report.units import MAX_DIGITS, length, with_unit
 from verification.studies.design import fatigue_report

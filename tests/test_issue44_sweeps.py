@@ -162,7 +162,7 @@ def test_keys_that_change_a_case_stay_accepted(tmp_path, base, methods, key, val
 def _ttr_weight() -> float:
     """The submerged weight [N] of ttr-steel's line, from its section (closed form: steel
     ring weight minus the displaced water of the outer diameter; the bore is empty of
-    contents and not flooded unless the scene says so, as riser.sections models it)."""
+    contents and not flooded unless the scene says so, as riser.model.sections models it)."""
     d = _base("ttr-steel")
     lt = d["line_types"]["steel"]
     od, wt, rho_s = lt["outer_diameter"], lt["wall_thickness"], lt["density"]

@@ -16,8 +16,8 @@ import numpy as np
 import pytest
 
 from riser import load_scene
-from verification.comparison.agreement import agreement
-from verification.comparison.protocol import compare
+from verification.comparison.static.agreement import agreement
+from verification.comparison.static.protocol import compare
 from verification.comparison.tolerances import TOLERANCES, scene_scales, tolerance
 
 FIXTURE = Path(__file__).parent / "fixtures" / "ttr-steel-no-current.toml"

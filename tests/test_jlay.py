@@ -18,14 +18,14 @@ from scipy.optimize import fsolve
 
 import bvp
 from riser.io.scene_file import parse_scene
-from riser.result import Status
-from riser.scene import HangOffAngleEnds
+from riser.results.result import Status
+from riser.model.scene import HangOffAngleEnds
 from verification.catalog import builtin_paths, resolve
 from verification.pipeline import solve_scene
 
 TEXT = builtin_paths()["kang2015-jlay"].read_text()
 T_TOP, HEIGHT = 5.681e6, 3000.0                  # N, m: the scene's [ends]
-# the pipe by hand (the paper's data, not riser.sections): 18 in x 1.25 in X65, empty
+# the pipe by hand (the paper's data, not riser.model.sections): 18 in x 1.25 in X65, empty
 D, WT, RHO_S, E, RHO_W, G = 0.4572, 0.03175, 7850.0, 2.07e11, 1025.0, 9.81
 AREA = math.pi / 4.0 * (D ** 2 - (D - 2 * WT) ** 2)
 EI = E * math.pi / 64.0 * (D ** 4 - (D - 2 * WT) ** 4)     # 2.0e8 N m2

@@ -13,7 +13,7 @@ import pandas as pd
 import pytest
 
 import bvp
-from riser.sections import segment_properties
+from riser.model.sections import segment_properties
 from verification.runtime import outdir
 from verification.studies import STUDIES, study
 from verification.studies.kang2015 import cases as k

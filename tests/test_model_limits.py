@@ -28,7 +28,7 @@ import builders
 import bvp
 import vfife
 from riser.errors import SceneError
-from riser.scene import Seabed
+from riser.model.scene import Seabed
 from verification.cli import main as cli_main
 from verification.pipeline import vfife_equivalent
 
@@ -346,7 +346,7 @@ def test_taut_line_inextensible_is_refused():
 
 
 # a line within 1e-4 of its chord, on either side: the starting guess is Irvine's elastic
-# catenary (bvp/guess.py), whose tension carries the weight; the inextensible guess had
+# catenary (bvp/beam/guess.py), whose tension carries the weight; the inextensible guess had
 # H -> inf (barely slack) or a zero tension (taut) and solve_bvp failed
 @pytest.mark.parametrize("L", [99.999, 100.0, 100.001, 100.01])
 def test_line_as_long_as_its_chord_bvp(L):

@@ -1,5 +1,5 @@
 """Modes about a static state in an in-plane current: both methods linearise the same
-model, the static drag frozen as a dead load (``bvp/modes.py``, ``vfife/tangent.py``).
+model, the static drag frozen as a dead load (``bvp/modal/modes.py``, ``vfife/modal/tangent.py``).
 
 The VFIFE's tangent has no drag term (a constant nodal force has no stiffness); the BVP's
 equations are written in the frame that turns with the line, where a dead load's
@@ -28,9 +28,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-import bvp.modes
-import vfife.modes
-from bvp.modal_equations import FAMILIES, Piece, build_pieces
+import bvp.modal.modes
+import vfife.modal.modes
+from bvp.modal.equations import FAMILIES, Piece, build_pieces
 from bvp.solver import solve as bvp_solve
 from riser.io.scene_file import scene_from_dict
 from verification.comparison.modes import pair_rows
@@ -65,8 +65,8 @@ def cable(speed: float, *, grounded: bool = False):
 
 
 def rows_of(scene):
-    b = bvp.modes.solve_modes(scene, COUNT)
-    v = vfife.modes.solve_modes(scene, COUNT)
+    b = bvp.modal.modes.solve_modes(scene, COUNT)
+    v = vfife.modal.modes.solve_modes(scene, COUNT)
     assert b.converged and v.converged, (b.message, v.message)
     rows = pair_rows(b, v)
     assert len(rows) == 2 * COUNT
@@ -75,7 +75,7 @@ def rows_of(scene):
 
 def without_drag_terms(monkeypatch):
     """The BVP's pieces built without the dead drag (its frame terms left out)."""
-    monkeypatch.setattr(bvp.modes, "build_pieces",
+    monkeypatch.setattr(bvp.modal.modes, "build_pieces",
                         lambda scene, profile, **kw: build_pieces(scene, profile))
 
 
@@ -169,4 +169,4 @@ def test_frame_terms_are_the_static_load_as_a_dead_load():
 def test_free_vibration_refuses_a_current():
     # released without its drag the static state in a current is no equilibrium
     with pytest.raises(ValueError, match="current"):
-        vfife.modes.free_vibration(cable(1.0))
+        vfife.modal.modes.free_vibration(cable(1.0))

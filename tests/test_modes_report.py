@@ -9,17 +9,17 @@ import numpy as np
 import pytest
 
 from riser.io.scene_file import scene_from_dict
-from riser.modes import PLANES, ModalResult, Mode
-from riser.result import Status
+from riser.results.modes import PLANES, ModalResult, Mode
+from riser.results.result import Status
 from verification.catalog import resolve
 from verification.comparison import modes as vm
 
 try:                                   # the BVP's modal analysis (written in parallel)
-    import bvp.modes  # noqa: F401
+    import bvp.modal.modes  # noqa: F401
     HAVE_BVP_MODES = True
-except ImportError:                    # pragma: no cover - until bvp/modes.py exists
+except ImportError:                    # pragma: no cover - until bvp/modal/modes.py exists
     HAVE_BVP_MODES = False
-needs_bvp = pytest.mark.skipif(not HAVE_BVP_MODES, reason="bvp.modes is not importable yet")
+needs_bvp = pytest.mark.skipif(not HAVE_BVP_MODES, reason="bvp.modal.modes is not importable yet")
 
 
 def small_scene():

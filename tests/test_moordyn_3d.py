@@ -25,7 +25,7 @@ from riser.io.moordyn.deck import parse_deck
 from riser.io.moordyn.deck_from_scene import export_scene
 from riser.io.moordyn.scene_from_deck import import_deck
 from riser.io.scene_file import load_scene, parse_scene
-from riser.sections import segment_properties
+from riser.model.sections import segment_properties
 from verification.catalog import resolve
 from verification.cli import main
 

@@ -1,7 +1,7 @@
 """MoorDyn v2 decks in and out (issue 17, items 1 and 2); no moordyn package needed.
 
 The round trip (export, then import) is checked against the scene's own physics: the
-section properties per metre that both methods read (riser.sections), the ends, the
+section properties per metre that both methods read (riser.model.sections), the ends, the
 environment, the seabed and the current vector at every height, to input precision
 (numbers are written with repr, so only the equivalent-diameter arithmetic rounds: 1e-12).
 Bad decks must give one line naming the deck line, exit 2.
@@ -20,8 +20,8 @@ from riser.io.moordyn.deck import DeckError, parse_deck, read_deck
 from riser.io.moordyn.deck_from_scene import export_scene
 from riser.io.moordyn.scene_from_deck import import_deck
 from riser.io.scene_file import parse_scene
-from riser.scene import FixedEnds
-from riser.sections import segment_properties
+from riser.model.scene import FixedEnds
+from riser.model.sections import segment_properties
 from verification.catalog import builtin_paths, resolve
 from verification.cli import main
 from verification.peers.moordyn.deck import export

@@ -15,7 +15,7 @@ import pytest
 
 moordyn = pytest.importorskip("moordyn", reason="the optional extra [moordyn] is not installed")
 
-from riser.dynamics import Dynamics, TopMotion  # noqa: E402
+from riser.physics.dynamics import Dynamics, TopMotion  # noqa: E402
 from riser.errors import SceneError  # noqa: E402
 from verification.catalog import resolve  # noqa: E402
 from verification.comparison.harmonics import fit  # noqa: E402

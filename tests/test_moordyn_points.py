@@ -27,7 +27,7 @@ from riser.io.moordyn.deck import parse_deck
 from riser.io.moordyn.deck_from_scene import SNAP, export_scene
 from riser.io.moordyn.scene_from_deck import import_deck
 from riser.io.scene_file import parse_scene
-from riser.sections import segment_properties
+from riser.model.sections import segment_properties
 from verification.cli import main
 
 # A steel riser (the exported scr-steel deck's line type) in three MoorDyn lines written

@@ -3,7 +3,7 @@ peer in the same sea (riser/io/moordyn/waves.py, verification/peers/moordyn/wave
 
 (a) Airy kinematics: MoorDyn-C's own wave kinematics (``moordyn.GetWavesKin``: elevation,
     velocity, acceleration at a point, at MoorDyn's clock) against the closed form written
-    here from the scene's convention (eta = a cos(omega t - k d - eps), riser.waves, with
+    here from the scene's convention (eta = a cos(omega t - k d - eps), riser.physics.waves, with
     Wheeler stretching and, above the surface, the surface's values as MoorDyn-C 2.7.2), for
     three components (kh = 1.0, 3.8 and 8.0, three headings), on a deck exported from a
     scene and on a deck written by hand and imported: the two conventions are the same sea.
@@ -26,7 +26,7 @@ import pytest
 from riser.io.moordyn.deck_from_scene import export_scene
 from riser.io.moordyn.scene_from_deck import import_deck
 from riser.io.scene_file import parse_scene, scene_from_dict
-from riser.waves import elevation
+from riser.physics.waves import elevation
 from verification.cli import main
 
 from builders import line, small_pipe
@@ -413,10 +413,10 @@ def test_peer_runs_the_scenes_sea_and_vessel_motion(current, tmp_path):
     """The MoorDyn peer in a vessel scene's sea: MoorDyn's own elevation at the waves'
     origin is the scene's at every sample (the same components: 1e-6 m is the wave
     number's phase error, above), its hang-off follows the vessel's motion
-    (riser.hang_off_motion) to round-off, and with a current (settled in still water,
+    (riser.physics.hang_off_motion) to round-off, and with a current (settled in still water,
     then the same state loaded into the deck with the waves) the line moves on from the
     settled state without a jump (less than half the current's drift from still water)."""
-    from riser.hang_off_motion import hang_off_displacement
+    from riser.physics.hang_off_motion import hang_off_displacement
     from verification.peers.moordyn.waves import run_waves
     scene = _vessel_scene(current)
     run = run_waves(scene, tmp_path, segment_length=7.0)

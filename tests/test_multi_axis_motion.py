@@ -1,5 +1,5 @@
 """A hang-off motion along several axes (issue 35): an orbit (one period, an amplitude and
-a phase lead per axis) and a time series per axis (riser/dynamics.py TopMotion). The file
+a phase lead per axis) and a time series per axis (riser/physics/dynamics.py TopMotion). The file
 forms and their refusals; an orbit along one axis is that axis' motion to the bit; the
 frequency domain's response to an orbit is the sum of its axes' responses (a linear line:
 no drag); the VFIFE's first harmonic against the frequency domain's under an orbit."""
@@ -12,12 +12,13 @@ import numpy as np
 import pytest
 
 import vfife
-from bvp.harmonic import solve_harmonic
-from riser.dynamics import Dynamics, TopMotion
+from bvp.frequency.harmonic import solve_harmonic
+from riser.physics.dynamics import Dynamics, TopMotion
 from riser.errors import SceneError
-from riser.hang_off_motion import HangOffPath
+from riser.physics.hang_off_motion import HangOffPath
 from riser.io.scene_file import parse_scene
-from riser.response import harmonic_motion_vector, motion_amplitudes
+from riser.physics.hang_off_motion import motion_amplitudes
+from riser.results.response import harmonic_motion_vector
 from verification.comparison import harmonics
 
 JUMPER = """
@@ -165,7 +166,7 @@ def test_compare_dynamics_takes_an_orbit():
     # 0.05 m (the linear limit): every judged row within its tolerance (measured: hang-off
     # tension -0.04 %, 0.03 deg; tension along s -0.23 %, moment -0.36 %, displacement
     # -0.62 %); at 0.3 m the moment differs by 1.2 % (the nonlinearity: reported there)
-    from verification.comparison import dynamics
+    from verification.comparison.dynamic import protocol as dynamics
     sc = jumper(motion=ORBIT)
     dc = dynamics.compare_dynamics(sc, amplitudes=[0.05])
     assert dc.axis == dynamics.ORBIT

@@ -171,7 +171,7 @@ def test_unit_tracker_weights_by_declared_seconds():
 def test_dynamics_reports_increasing_fractions_ending_at_one():
     import vfife
     from riser.io.scene_file import load_scene
-    from riser.scene import Dynamics, TopMotion
+    from riser.model.scene import Dynamics, TopMotion
     base = load_scene(LONG_DYNAMIC)
     # the ramp within the run (the default, one period, would be longer than it)
     sc = base.replace(dynamics=Dynamics(duration=5.0, output_interval=1.0,

@@ -174,7 +174,7 @@ def test_vfife_modes_repeat_bit_for_bit():
     Fails when ARPACK starts from a random vector (scipy's default: a new one on every
     call), which moved the frequencies in their last digits (1e-13 here, up to 1e-10 on
     the study scenes) from one run of a report to the next."""
-    from vfife.modes import solve_modes
+    from vfife.modal.modes import solve_modes
     sc, static = _catenary_state()
     a = solve_modes(sc, 10, static=static)
     b = solve_modes(sc, 10, static=static)
@@ -192,7 +192,7 @@ def test_bvp_box_modes_repeat_bit_for_bit():
     Fails when ``eigs`` starts from a random vector (scipy's default), which changed the
     refined BVP frequencies in their last digits from run to run."""
     import bvp
-    from bvp.modal_equations import FAMILIES, box_modes, build_pieces
+    from bvp.modal.equations import FAMILIES, box_modes, build_pieces
     sc = builders.scene(builders.catenary(name="catenary"))
     static = bvp.solve(sc)
     assert static.converged, static.message

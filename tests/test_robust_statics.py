@@ -1,5 +1,5 @@
 """Static relaxation on the hard cases: fictitious inertia, contact damping of coarse
-meshes, the lift-off catenary start and the continuation in weight (vfife.statics).
+meshes, the lift-off catenary start and the continuation in weight (vfife.statics.equilibrium).
 
 Every number is checked against an independent source: the BVP solution of the same
 scene (comparison protocol tolerances, verification/comparison/tolerances.py) or a closed form.
@@ -11,12 +11,12 @@ import numpy as np
 import pytest
 
 from verification.catalog import resolve
-from verification.comparison.agreement import agreement
+from verification.comparison.static.agreement import agreement
 from verification.pipeline import solve_scene
 from verification.quantities import reference_depth
 from verification.studies import stress
 from vfife.mesh import build_mesh, catenary_shape
-from vfife.relaxation import static_inertia
+from vfife.statics.relaxation import static_inertia
 
 
 def _rows(name):
@@ -108,7 +108,7 @@ def test_buoyancy_loss_scene():
     # weight times the height, T_top - T(s_b) = int w dy from the last contact point s_b
     # to the hang-off (moment-free ends; extensibility O(T/EA) ~ 1e-3 of the change)
     ib = int(np.max(np.where(p.y <= 0.0)[0]))
-    from riser.sections import segment_properties
+    from riser.model.sections import segment_properties
     props = segment_properties(sc)
     w = np.array([next(q.weight for q in props if q.s_start - 1e-9 <= sm < q.s_end + 1e-9)
                   for sm in 0.5 * (p.s[ib + 1:] + p.s[ib:-1])])

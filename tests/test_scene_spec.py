@@ -3,7 +3,7 @@ the key tables of docs/scene-files.md are generated from the specs, the built-in
 load to the values an independent reading of their files gives, and the model modules
 do not import the file formats.
 
-Regenerating the docs' key tables after a spec change: ``python -m riser.spec_docs``, or
+Regenerating the docs' key tables after a spec change: ``python -m riser.model.spec_docs``, or
 run this module with ``REGENERATE_SCENE_KEYS=1`` (test_docs_key_tables_match_the_specs
 then rewrites the block between the markers before comparing).
 """
@@ -20,15 +20,15 @@ from pathlib import Path
 import pytest
 
 import riser
-from riser import spec_docs
-from riser.dynamics import Dynamics, TopMotion
-from riser.ends import Ends, FixedEnds, HangOffAngleEnds, TdpTensionEnds, TopTensionEnds
-from riser.environment import Current, Seabed
+from riser.model import spec_docs
+from riser.physics.dynamics import Dynamics, TopMotion
+from riser.model.ends import Ends, FixedEnds, HangOffAngleEnds, TdpTensionEnds, TopTensionEnds
+from riser.physics.environment import Current, Seabed
 from riser.errors import SceneError
-from riser.internal_flow import InternalFlow
+from riser.physics.internal_flow import InternalFlow
 from riser.io.scene_file import load_scene
-from riser.line import LineType, Segment
-from riser.settings import AnalyticSettings, BVPSettings, VFIFESettings
+from riser.model.line import LineType, Segment
+from riser.model.settings import AnalyticSettings, BVPSettings, VFIFESettings
 from verification.catalog import builtin_paths
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -42,7 +42,7 @@ def test_docs_key_tables_match_the_specs():
     text = page.read_text(encoding="utf-8")
     assert spec_docs.with_block(text, spec_docs.scene_keys_markdown()) == text, (
         "the key tables of docs/scene-files.md differ from the specs: run "
-        "python -m riser.spec_docs")
+        "python -m riser.model.spec_docs")
 
 
 def test_the_generator_covers_every_table_and_key():

@@ -15,8 +15,8 @@ import pytest
 
 from riser.errors import SceneError
 from riser.io.scene_file import load_scene, parse_scene
-from riser.scene import FixedEnds
-from riser.sections import segment_properties
+from riser.model.scene import FixedEnds
+from riser.model.sections import segment_properties
 from verification.catalog import builtin_paths
 
 SRC = "scene.toml"
@@ -786,7 +786,7 @@ def test_dynamics_replace_gives_the_files_error():
 def test_a_part_given_whole_to_replace_names_its_own_field():
     # a part built in code is checked when it is built, before the scene sees it: its own
     # field and source; the key path form gives the scene's path and source
-    from riser.scene import FixedEnds
+    from riser.model.scene import FixedEnds
     scene = parse_scene(FIXED, SRC)
     with pytest.raises(SceneError) as info:
         scene.replace(ends=FixedEnds(anchor=(0.0, 0.0), hang_off=(600.0, -10.0)))

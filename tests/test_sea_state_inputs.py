@@ -1,4 +1,4 @@
-"""Sea-state inputs (riser/waves.py, riser/vessel.py, riser/hang_off_motion.py) and the
+"""Sea-state inputs (riser/physics/waves.py, riser/physics/vessel.py, riser/physics/hang_off_motion.py) and the
 VFIFE's wave kinematics (vfife.kernels.wave_pass), each against an independent source: the
 dispersion relation, the Airy closed forms, the spectra's moments, the synthesised record's
 statistics, today's harmonic top motion, and one-line refusals of bad input."""
@@ -12,10 +12,10 @@ import pytest
 
 import vfife
 from riser.errors import SceneError
-from riser.hang_off_motion import hang_off_displacement
+from riser.physics.hang_off_motion import hang_off_displacement
 from riser.io.scene_file import scene_from_dict
-from riser.vessel import DOFS, RAOTable, Vessel
-from riser.waves import WaveSpectrum, WaveTrain, Waves, elevation, wave_numbers
+from riser.physics.vessel import DOFS, RAOTable, Vessel
+from riser.physics.waves import WaveSpectrum, WaveTrain, Waves, elevation, wave_numbers
 from vfife import kernels
 
 from builders import catenary, scene
@@ -287,7 +287,7 @@ def test_most_probable_maximum_of_a_gaussian_record():
     period matches Rice's Tz = 2 pi sqrt(m0 / m2) of its components (a record of ~150
     crossings counts them to ~2 %: tolerance 3 %), and the 3 h MPM is mean + std
     sqrt(2 ln(10800 / Tz)) with the record's own std and Tz (exact)."""
-    from vfife.dynamic_outputs import most_probable_maximum
+    from vfife.dynamics.outputs import most_probable_maximum
     sp = WaveSpectrum(kind="jonswap", hs=4.0, tp=10.0, components=200, seed=3)
     comp = Waves(spectrum=sp, ramp_time=0.0).components(1000.0, G, (0.0, 0.0))
     period = 2.0 * math.pi / sp.component_omegas()[1]

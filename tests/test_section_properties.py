@@ -12,7 +12,7 @@ from scipy.optimize import fsolve
 
 from riser.errors import SceneError
 from riser.io.scene_file import load_scene, parse_scene
-from riser.sections import segment_properties
+from riser.model.sections import segment_properties
 from verification.pipeline import solve_scene
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples" / "scenes"

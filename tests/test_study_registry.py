@@ -14,7 +14,7 @@ import pandas as pd
 import pytest
 
 from verification.catalog import resolve
-from verification.comparison import dynamics_report
+from verification.comparison.dynamic import report as dynamics_report
 from verification.report.markdown import fmt
 from verification.runtime import outdir
 from verification.studies import STUDIES, study

@@ -5,7 +5,7 @@ verification/cli/sweep.py).
 Every number is checked against a source the sweep does not compute itself: the sweep
 file parsed with ``tomllib`` (the file contract), an independent solve of each case's
 scene through ``verification.pipeline.solve_scene`` (what ``riser-verify solve`` runs),
-the compare protocol (``verification.comparison.agreement.agreement``) on those profiles, the
+the compare protocol (``verification.comparison.static.agreement.agreement``) on those profiles, the
 profiles interpolated at the envelope's stations, and a physical ordering (a vessel
 farther from the anchor pulls the catenary tighter: higher hang-off tension).
 
@@ -35,7 +35,7 @@ import pytest
 
 from riser.errors import SceneError
 from riser.io.scene_file import load_scene
-from riser.profile import summarize
+from riser.results.profile import summarize
 from verification import cli
 from verification.sweeps.file import SWEEP_DIR, load_sweep
 
@@ -402,7 +402,7 @@ def test_a_farther_vessel_gives_a_higher_hang_off_tension(swept):
 
 
 def test_agreement_columns_follow_the_compare_protocol(swept, independent):
-    from verification.comparison.agreement import agreement
+    from verification.comparison.static.agreement import agreement
     for case in swept.sweep.cases:
         b, v = independent[case.index, "bvp"], independent[case.index, "vfife"]
         # reference depth of the protocol: the water depth (verification/quantities.py)
@@ -584,7 +584,7 @@ def test_a_failing_case_never_stops_the_others(run_cli, tmp_path):
     """[vfife] max_steps = 100: the relaxation needs ~6e4 steps from its catenary start
     on this scene (its message at the default says so), so it stops at the limit,
     not_converged, at solve time; the BVP ignores [vfife] settings. Newton's finish off
-    (it finishes even an unconverged coarse start: vfife/newton.py)."""
+    (it finishes even an unconverged coarse start: vfife/statics/newton.py)."""
     f = write(tmp_path / "f.toml", sweep_text(
         values=[5_000_000, 100], key="vfife.max_steps",
         extra="[set]\n\"vfife.expert.static_newton\" = false\n"))

@@ -1,6 +1,6 @@
 """A result outside the model is never a silent exit 0 (issue 13): overrides validated like
 their scene keys, resolution and motion refused before solving, named warnings after
-solving (riser/validity.py), ``--strict``, and the honesty of form (b)."""
+solving (riser/results/validity.py), ``--strict``, and the honesty of form (b)."""
 
 from __future__ import annotations
 
@@ -11,9 +11,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from riser import validity
+from riser.results import validity
 from riser.io.scene_file import parse_scene
-from riser.profile import Profile
+from riser.results.profile import Profile
 from verification.catalog import builtin_paths
 from verification.pipeline import solve_scene
 
@@ -34,7 +34,7 @@ def edited(tmp_path, builtin: str, *pairs, name="edited.toml") -> str:
 
 # ----------------------------------------------------------------- refused before solving
 @pytest.mark.parametrize("argv,key,words", [
-    # the CLI option is checked against the scene key's range (riser/settings.py), and
+    # the CLI option is checked against the scene key's range (riser/model/settings.py), and
     # named as the option
     (["solve", "scr-steel", "--method", "vfife", "--element-length", "5000"],
      "command line: --element-length", ["must be <= 1000 m", "got 5000"]),
@@ -159,7 +159,7 @@ hang_off = [200.0, 90.0]
 
 @pytest.mark.parametrize("keys,y,t,name", [
     # each check fires on its own, with its name; the thresholds are those of
-    # riser/validity.py (surface: y > water_depth; elastic seabed: deeper than D;
+    # riser/results/validity.py (surface: y > water_depth; elastic seabed: deeper than D;
     # compression: below -1e-3 of the largest tension, only when compression = false)
     ("", [0.0, 50.0, 100.5], [1e4, 2e4, 3e4], "above_surface"),
     ("", [-0.15, 50.0, 90.0], [1e4, 2e4, 3e4], "below_seabed"),

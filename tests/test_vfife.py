@@ -15,15 +15,15 @@ from scipy.optimize import fsolve
 import builders
 import vfife
 from riser.errors import UnsupportedSceneError
-from riser.result import Status
+from riser.results.result import Status
 from riser.io.scene_file import load_scene, scene_from_dict
-from riser.profile import summarize
-from riser.scene import FixedEnds
-from riser.transform import DEFAULT_SEABED_STIFFNESS, fixed_ends_scene
+from riser.results.profile import summarize
+from riser.model.scene import FixedEnds
+from riser.model.transform import DEFAULT_SEABED_STIFFNESS, fixed_ends_scene
 from vfife.mesh import build_mesh
 from vfife.model import Model
-from vfife.relaxation import Tolerances, relax
-from vfife.statics import solve_static
+from vfife.statics.relaxation import Tolerances, relax
+from vfife.statics.equilibrium import solve_static
 from vfife.timestep import choose_step, critical_steps
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -298,7 +298,7 @@ def test_rigid_body_motion_gives_zero_internal_force():
 # ------------------------------------------------------------------ effects and kernels
 def test_zero_speed_current_equals_no_current():
     base = wang_fixed()
-    from riser.scene import Current
+    from riser.model.scene import Current
     zero = base.replace(current=Current(heights=(0.0,), speeds=(0.0,)))
     r0 = vfife.solve(base, element_length=10.0)
     r1 = vfife.solve(zero, element_length=10.0)
@@ -366,7 +366,7 @@ def test_wang_baseline_1m():
 # ------------------------------------------------------------------ dynamics
 def test_dynamics_heave_outputs(tmp_path):
     base = wang_fixed()
-    from riser.scene import Dynamics, TopMotion
+    from riser.model.scene import Dynamics, TopMotion
     # no ramp (impulsive start) so that the hang-off follows the bare sine below
     sc = base.replace(dynamics=Dynamics(duration=10.0, output_interval=1.0,
                                         top_motion=TopMotion(axis="y", amplitude=1.5,
@@ -391,7 +391,7 @@ def test_dynamics_heave_outputs(tmp_path):
 
 def test_blow_up_is_reported_not_nan():
     base = wang_fixed()
-    from riser.scene import Dynamics, TopMotion
+    from riser.model.scene import Dynamics, TopMotion
     sc = base.replace(dynamics=Dynamics(duration=2.0, output_interval=1.0,   # ramp in the run
                                         top_motion=TopMotion(axis="y", amplitude=1.0,
                                                              period=10.0, ramp_time=2.0)),

@@ -5,7 +5,7 @@ plane, a uniform dead load of fixed direction (:func:`vfife.solve` ``dead_load``
 Each case is checked against an independent statement of the same line:
 - a turning profile is the single-heading profile it spells differently (headings all
   equal, or reversed by 180 deg with the speed's sign), and its nodal current is
-  :meth:`riser.environment.Current.velocity` (numpy's interpolation, not the kernel's);
+  :meth:`riser.physics.environment.Current.velocity` (numpy's interpolation, not the kernel's);
 - a line whose hang-off is out of the anchor's plane is the planar line (same horizontal
   distance, planar kernels) rotated about the vertical through the anchor: the seabed,
   gravity and a current along the line's plane do not care about the heading;
@@ -39,10 +39,10 @@ import pytest
 
 import builders
 import vfife
-from riser.frame import LinePlane, out_of_plane_columns
+from riser.model.frame import LinePlane, out_of_plane_columns
 from vfife import kernels
 from vfife.solver import warm_up
-from vfife.statics import solve_static
+from vfife.statics.equilibrium import solve_static
 
 POSITION_TOL = 1e-11        # x line length: round-off (module docstring)
 TOL = 1e-6                  # x the quantity's largest magnitude: round-off
@@ -134,7 +134,7 @@ def test_turning_profile_is_the_single_heading_profile_it_spells(case):
 def test_turning_current_at_the_nodes_is_the_profile_interpolated_component_wise():
     """The kernels' nodal current of a profile turning with height (x components along
     cdir = e_x, z components in Uz, each by the branch-free :func:`vfife.kernels.
-    current_pass`) equals :meth:`riser.environment.Current.velocity` at the node heights
+    current_pass`) equals :meth:`riser.physics.environment.Current.velocity` at the node heights
     (np.interp of each component; constant above the top height, 45 m, which the upper
     nodes pass) to round-off (1e-12 m/s). A single heading keeps Uz exactly zero."""
     cur = {"heights": [0.0, 20.0, 45.0], "speeds": [0.5, 1.0, 0.8],

@@ -1,4 +1,4 @@
-"""VFIFE modal analysis (vfife/modes.py, vfife/tangent.py): closed forms, the added mass,
+"""VFIFE modal analysis (vfife/modal/modes.py, vfife/modal/tangent.py): closed forms, the added mass,
 the free vibration of the time-domain model, refusals and the scr-steel riser.
 
 Every tolerance says where it comes from. The lumped-mass chain's own dispersion is
@@ -16,9 +16,9 @@ import pytest
 
 import builders
 import vfife
-from riser.modes import PLANES
+from riser.results.modes import PLANES
 from verification.catalog import resolve
-from vfife.modes import free_vibration, solve_modes
+from vfife.modal.modes import free_vibration, solve_modes
 
 
 def straight(length, span, *, EA, EI, mass=10.0, D=0.02, d=0.01, ca=0.0, hydro=None,

@@ -1,4 +1,4 @@
-"""Newton's finish of the VFIFE statics (vfife/newton.py) and the BVP's pruned Newton
+"""Newton's finish of the VFIFE statics (vfife/statics/newton.py) and the BVP's pruned Newton
 matrices (bvp/collocation.py), issue 36.
 
 References: the BVP of the same scene (the comparison's tolerances), the relaxation's own
@@ -14,7 +14,7 @@ import bvp
 import vfife
 from bvp.collocation import unpruned
 from verification.catalog import resolve
-from vfife import newton
+from vfife.statics import newton
 
 
 @pytest.mark.parametrize("name", ["scr-steel", "yu2021-a3"])
@@ -96,7 +96,7 @@ def test_the_3d_residual_is_the_planar_one_on_a_planar_state():
     # the 3D kernels read the same forces and the moment about z on a planar state (z = 0,
     # directors in the plane): out_of_balance of both paths agree to round-off (1e-9 of the
     # largest force), the out-of-plane rows zero
-    from vfife.statics import solve_static
+    from vfife.statics.equilibrium import solve_static
     sc = resolve("scr-steel").replace(**{"vfife.expert.static_newton": False})
     planar, _ = solve_static(sc, 2.0, sc.vfife.static_tolerance, True)
     m3, _ = solve_static(sc, 2.0, sc.vfife.static_tolerance, False)

@@ -7,7 +7,7 @@ touchdown dragged sideways), internal flow (steady, and a slug).
 How the path is chosen: :func:`vfife.solve` steps a scene with ``scene.is_planar`` through
 the planar kernels (``*_2d`` in :mod:`vfife.kernels`, on rows x, y of the state); the
 3D kernels are the general path. Both entry points below it take the choice explicitly,
-:func:`vfife.statics.solve_static` (``planar``) and :func:`vfife.dynamics.run_dynamics`
+:func:`vfife.statics.equilibrium.solve_static` (``planar``) and :func:`vfife.dynamics.run.run_dynamics`
 (``planar``), so the 3D path of a planar scene is those calls with ``planar=False``; the
 planar calls are checked to be what :func:`vfife.solve` runs. The dynamics of both paths
 start from the same (planar) static state, so that their difference is the dynamics'.
@@ -45,8 +45,8 @@ import pytest
 
 import builders
 import vfife
-from vfife.dynamics import run_dynamics
-from vfife.statics import solve_static
+from vfife.dynamics.run import run_dynamics
+from vfife.statics.equilibrium import solve_static
 
 POSITION_TOL = 1e-11        # x line length; see the module docstring
 TOL = 1e-6                  # x the quantity's largest magnitude
@@ -109,7 +109,7 @@ def run(data: dict, planar: bool, static=None):
     scene = builders.scene(data)
     assert scene.is_planar
     # the two kernel paths' relaxations compared step for step: Newton's finish
-    # (vfife/newton.py) off
+    # (vfife/statics/newton.py) off
     scene = scene.replace(**{"vfife.expert.static_newton": False})
     vf = scene.vfife
     model, sinfo = solve_static(scene, vf.element_length, vf.static_tolerance, planar)

@@ -16,7 +16,7 @@ from scipy.optimize import fsolve
 
 import vfife
 from riser.io.scene_file import scene_from_dict
-from vfife.dynamic_outputs import Recorder
+from vfife.dynamics.outputs import Recorder
 from vfife.mesh import build_mesh
 from vfife.recovery import Recovery, joint_nodes
 from vfife.solver import make_profile

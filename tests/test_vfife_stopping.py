@@ -1,4 +1,4 @@
-"""The VFIFE static stopping rule (vfife/relaxation.py): "converged" bounds the error of
+"""The VFIFE static stopping rule (vfife/statics/relaxation.py): "converged" bounds the error of
 the reported tension and moment, taut lines included.
 
 References: Irvine's elastic catenary (written here), the BVP of the same scene, and the
@@ -16,8 +16,8 @@ from scipy.optimize import fsolve
 import builders
 import bvp
 import vfife
-from vfife.relaxation import StillToCome
-from vfife.statics import fundamental_omega
+from vfife.statics.relaxation import StillToCome
+from vfife.statics.equilibrium import fundamental_omega
 
 #: comparison's hang-off tension tolerance, relative (verification/comparison/tolerances.py)
 HANG_OFF_TOL = 1.0e-4
@@ -28,7 +28,7 @@ def taut(span, slack_m: float, *, w: float = 0.5, EA: float = 1e9, h: float | No
     """One segment of a light cable (EI 1e3 N m2, submerged weight ``w`` [N/m], ``EA`` [N])
     from (0, 0) to ``span``, ``slack_m`` [m] longer than the chord (negative: it must
     stretch); ``expert``: [vfife.expert] keys. The relaxation's stopping rule is what this
-    module tests: Newton's finish (vfife/newton.py) is off unless ``static_newton`` says
+    module tests: Newton's finish (vfife/statics/newton.py) is off unless ``static_newton`` says
     otherwise."""
     expert.setdefault("static_newton", False)
     chord = math.hypot(*span)

@@ -9,10 +9,10 @@ from __future__ import annotations
 import pytest
 
 from riser.errors import SceneError
-from riser.waves import WaveTrain
+from riser.physics.waves import WaveTrain
 from verification.catalog import resolve
-from verification.comparison.dynamics import compare_dynamics
-from verification.comparison.sea_dynamics import compare_sea
+from verification.comparison.dynamic.protocol import compare_dynamics
+from verification.comparison.sea.protocol import compare_sea
 
 
 def _rows(rows) -> dict:

@@ -5,7 +5,7 @@ solver)::
 
     from verification import resolve, solve_scene, compare, write_comparison, run_modes
     scene = resolve("scr-steel")                  # a built-in name or a scene file
-    res = solve_scene(scene, "bvp")               # a riser.result.SolveResult
+    res = solve_scene(scene, "bvp")               # a riser.results.result.SolveResult
     comp = compare(scene)                         # both methods on the same model
     write_comparison(comp, "out/scr-steel")       # agreement.csv, report.md, plots
 
@@ -23,8 +23,8 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:                 # the names below, for readers and type checkers
     from .catalog import resolve
     from .comparison.modes import run_modes
-    from .comparison.protocol import Comparison, compare
-    from .comparison.report import write as write_comparison
+    from .comparison.static.protocol import Comparison, compare
+    from .comparison.static.report import write as write_comparison
     from .pipeline import solve_scene, vfife_equivalent
 
 #: facade name -> (module, attribute)
@@ -32,9 +32,9 @@ _FACADE = {
     "resolve": ("verification.catalog", "resolve"),
     "solve_scene": ("verification.pipeline", "solve_scene"),
     "vfife_equivalent": ("verification.pipeline", "vfife_equivalent"),
-    "compare": ("verification.comparison.protocol", "compare"),
-    "Comparison": ("verification.comparison.protocol", "Comparison"),
-    "write_comparison": ("verification.comparison.report", "write"),
+    "compare": ("verification.comparison.static.protocol", "compare"),
+    "Comparison": ("verification.comparison.static.protocol", "Comparison"),
+    "write_comparison": ("verification.comparison.static.report", "write"),
     "run_modes": ("verification.comparison.modes", "run_modes"),
 }
 __all__ = ["resolve", "solve_scene", "vfife_equivalent", "compare", "Comparison",

@@ -7,7 +7,7 @@ from pathlib import Path
 
 from riser.errors import SceneError
 from riser.io.scene_file import is_file, load_scene, path_problem
-from riser.scene import Scene
+from riser.model.scene import Scene
 
 SCENE_DIR = Path(__file__).parent / "scenes"
 

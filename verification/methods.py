@@ -7,9 +7,9 @@ a plain function of the package, wrapped below by a function that imports it whe
 called (loading a solver costs ~1.5 s: ``riser-verify scenes`` or a refusal of bad input
 loads none):
 
-- ``solve(scene, **overrides) -> riser.result.SolveResult``: statics, and the time domain
+- ``solve(scene, **overrides) -> riser.results.result.SolveResult``: statics, and the time domain
   when the scene has ``[dynamics]`` and the method has ``time_domain``;
-- ``modes(scene, count, *, static=None, progress=None) -> riser.modes.ModalResult``;
+- ``modes(scene, count, *, static=None, progress=None) -> riser.results.modes.ModalResult``;
 - the frequency domain about the static state (the BVP): ``harmonic`` (one period, a
   top motion or a wave), ``transfer`` (a sweep of periods along one axis of motion), ``sea``
   (an irregular sea's spectral response) and their ``require_*`` refusals.
@@ -34,7 +34,7 @@ class Method:
 
     name : ``SolveResult.method``, ``--method NAME``, the method's column in a comparison.
     summary : one line on what it is.
-    solve : ``solve(scene, **overrides)``, a :class:`riser.result.SolveResult`.
+    solve : ``solve(scene, **overrides)``, a :class:`riser.results.result.SolveResult`.
     overrides : the settings a caller may override per solve (``tolerance``: the BVP's
         solve_bvp tolerance; ``element_length`` [m]: the VFIFE's).
     fixed_ends_only : it solves fixed-ends scenes only; a scene in a touchdown form is
@@ -68,32 +68,32 @@ def _bvp_solve(scene, **overrides):
 
 
 def _bvp_modes(scene, count=10, **kwargs):
-    from bvp.modes import solve_modes
+    from bvp.modal.modes import solve_modes
     return solve_modes(scene, count, **kwargs)
 
 
 def _bvp_harmonic(scene, period=None, motion=None, **kwargs):
-    from bvp.harmonic import solve_harmonic
+    from bvp.frequency.harmonic import solve_harmonic
     return solve_harmonic(scene, period, motion, **kwargs)
 
 
 def _bvp_transfer(scene, periods, axis, **kwargs):
-    from bvp.harmonic import transfer_sweep
+    from bvp.frequency.harmonic import transfer_sweep
     return transfer_sweep(scene, periods, axis, **kwargs)
 
 
 def _bvp_sea(scene, **kwargs):
-    from bvp.sea_response import solve_sea
+    from bvp.frequency.sea_response import solve_sea
     return solve_sea(scene, **kwargs)
 
 
 def _bvp_require_harmonic(scene, motion):
-    from bvp.harmonic import require_harmonic
+    from bvp.frequency.harmonic import require_harmonic
     return require_harmonic(scene, motion)
 
 
 def _bvp_require_wave(scene):
-    from bvp.harmonic import require_wave
+    from bvp.frequency.harmonic import require_wave
     return require_wave(scene)
 
 
@@ -104,7 +104,7 @@ def _vfife_solve(scene, **overrides):
 
 
 def _vfife_modes(scene, count=10, **kwargs):
-    from vfife.modes import solve_modes
+    from vfife.modal.modes import solve_modes
     return solve_modes(scene, count, **kwargs)
 
 

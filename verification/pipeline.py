@@ -6,7 +6,7 @@ hang-off height and top tension) leaves the hang-off point as an output.
 :func:`vfife_equivalent` is the one conversion every caller uses: the BVP solves the scene as given (its own model, inextensible on a rigid seabed by
 default), the hang-off is fixed at that solution's top point, and ``[vfife]
 seabed_length`` (300 m) of line is added to the first segment on an elastic seabed ahead
-of that touchdown, so that the touchdown is free to move (``riser.transform``). That
+of that touchdown, so that the touchdown is free to move (``riser.model.transform``). That
 fixed-ends scene is the model both methods solve (extensible, elastic seabed). Its arc
 lengths are reported in the scene's own coordinate, from the BVP touchdown: the converted
 scene's s minus the added length (negative s lies on the added line).
@@ -25,19 +25,19 @@ import dataclasses
 import time
 from dataclasses import dataclass
 
-from riser import validity
+from riser.results import validity
 from riser.errors import SolveFailed, UnsupportedSceneError
-from riser.profile import Profile
-from riser.result import DynamicsResult, SolveResult, Status
-from riser.scene import (
+from riser.results.profile import Profile
+from riser.results.result import DynamicsResult, SolveResult, Status
+from riser.model.scene import (
     FixedEnds,
     HangOffAngleEnds,
     Scene,
     TdpTensionEnds,
     TopTensionEnds,
 )
-from riser.transform import fixed_ends_scene
-from vfife.dynamic_outputs import ARC_LENGTH_COLUMNS, ARC_LENGTH_KEYS
+from riser.model.transform import fixed_ends_scene
+from vfife.dynamics.outputs import ARC_LENGTH_COLUMNS, ARC_LENGTH_KEYS
 from verification.methods import method as method_of
 from vfife.ends import require_vfife_model
 

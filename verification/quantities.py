@@ -11,8 +11,8 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import cKDTree
 
-from riser.profile import Profile, _parabolic_peak, summarize
-from riser.scene import Scene
+from riser.results.profile import Profile, _parabolic_peak, summarize
+from riser.model.scene import Scene
 
 
 def reference_depth(scene: Scene, bvp_summary: dict) -> float:

@@ -21,13 +21,13 @@ scene asking for them (``[model]``).
 3D: a scene with a current out of the x-y plane (one heading, or ``headings_deg``
 turning with height), a hang-off out of the anchor's plane or a top motion along z is
 stepped by the 3D kernels; its profile carries ``lateral`` and ``moment_out_of_plane``
-(from the vertical plane through the ends, :mod:`riser.frame`). A planar scene runs the
+(from the vertical plane through the ends, :mod:`riser.model.frame`). A planar scene runs the
 planar kernels.
 
 Public API: ``solve(scene, *, element_length=None, tolerance=None, progress=None,
 dead_load=None)`` (``dead_load``: an optional uniform load (qx, qy, qz) [N/m] of fixed
 direction added to the weight, for closed-form checks),
-``riser.transform.fixed_ends_scene(scene, hang_off_xy, seabed_length)``.
+``riser.model.transform.fixed_ends_scene(scene, hang_off_xy, seabed_length)``.
 """
 
 from .solver import solve

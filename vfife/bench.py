@@ -37,9 +37,9 @@ from pathlib import Path
 
 import numpy as np
 
-from riser.internal_flow import InternalFlow
-from riser.scene import Current, Dynamics, Scene, TopMotion
-from riser.waves import WaveSpectrum, WaveTrain, Waves
+from riser.physics.internal_flow import InternalFlow
+from riser.model.scene import Current, Dynamics, Scene, TopMotion
+from riser.physics.waves import WaveSpectrum, WaveTrain, Waves
 
 from .model import Model
 from .solver import solve, warm_up
@@ -91,7 +91,7 @@ def _wave_costs(scene, surface: float, duration: float) -> dict:
     """Wall time of a dynamic run (duration [s], still water, 1 m elements, the surface
     10 m above the hang-off) with a regular wave and with a 100-component sea over the
     same run without waves: the whole cost of the waves (the kernels' Taylor step and
-    inertia, and the kinematics' evaluation per interval, :mod:`vfife.waves`)."""
+    inertia, and the kinematics' evaluation per interval, :mod:`vfife.dynamics.waves`)."""
     base = scene.replace(water_depth=surface, dynamics=Dynamics(duration=duration,
                                                                 output_interval=0.5))
     walls = {}

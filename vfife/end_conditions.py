@@ -1,5 +1,5 @@
 """The VFIFE's end conditions of a fixed-ends scene (``[ends.anchor_joint]``,
-``[ends.hang_off_joint]``, ``[ends.tensioner]``; riser/ends.py), as the planar kernels
+``[ends.hang_off_joint]``, ``[ends.tensioner]``; riser/model/ends.py), as the planar kernels
 take them (:data:`vfife.kernels.END_SLOTS`), and the straight starting shape of the lines
 the catenary start does not describe (a vertical chord, a tensioned top, a free end).
 
@@ -17,9 +17,9 @@ import math
 
 import numpy as np
 
-from riser.ends import FixedEnds
-from riser.scene import Scene
-from riser.sections import segment_properties
+from riser.model.ends import FixedEnds
+from riser.model.scene import Scene
+from riser.model.sections import segment_properties
 
 from .kernels import END_SLOTS
 

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from riser.errors import UnsupportedSceneError
-from riser.scene import FixedEnds, Scene
+from riser.model.scene import FixedEnds, Scene
 
 
 def require_fixed_ends(scene: Scene) -> None:
@@ -14,7 +14,7 @@ def require_fixed_ends(scene: Scene) -> None:
         raise UnsupportedSceneError(
             f"{scene.source}: ends: vfife needs fixed ends (anchor + hang_off) but the scene "
             f"gives the '{scene.ends.kind}' form; solve it with the bvp method first and "
-            f"convert it with riser.transform.fixed_ends_scene(scene, hang_off_xy, seabed_length) "
+            f"convert it with riser.model.transform.fixed_ends_scene(scene, hang_off_xy, seabed_length) "
             f"(the CLI does this for you)")
     require_vfife_model(scene)
 

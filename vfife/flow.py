@@ -20,7 +20,7 @@ pressure, Fylling) gives the form this model integrates:
 The element force of the VFIFE (EA times the strain) is T_e, so
 
 - a steady uniform flow adds no static force: shape and T_e are those without flow, and
-  only the wall tension rises, by mu U^2 (riser/internal_flow.py reports it);
+  only the wall tension rises, by mu U^2 (riser/physics/internal_flow.py reports it);
 - the centrifugal force of a slug is the axial gradient term, the rest of it being carried
   by the curvature of T_e tau;
 - the Coriolis force -2 mu U tau_t acts on a moving line, with tau_t = d r_t / ds taken
@@ -51,8 +51,8 @@ import math
 
 import numpy as np
 
-from riser.internal_flow import contents_mass_per_length
-from riser.sections import segment_properties
+from riser.physics.internal_flow import contents_mass_per_length
+from riser.model.sections import segment_properties
 
 
 def flow_arrays(scene, mesh, mass: np.ndarray, wload: np.ndarray):

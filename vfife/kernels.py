@@ -195,7 +195,7 @@ def element_pass_2d(x, y, dx_, dy_, l0, kax, kb, f0, f1, a0, b0):
 # ============================================================================ axial dashpot
 # Statics only: a dashpot per element on the elongation rate, N_d = eta (e . (v_b - v_a)),
 # stiffness-proportional damping of the axial modes (eta = beta EA/l0, see
-# :mod:`vfife.statics`). A separate pass (as the drag) so that the elastic element pass and
+# :mod:`vfife.statics.equilibrium`). A separate pass (as the drag) so that the elastic element pass and
 # the dynamics are untouched; the node pass adds its forces after measuring the
 # out-of-balance force, so the residual is the elastic + external force only and the
 # dashpot, which vanishes at rest, cannot change the equilibrium.
@@ -235,7 +235,7 @@ def dashpot_pass_2d(x, y, vx, vy, eta, q0, q1):
 
 
 # ============================================================================ internal flow
-# Contents flowing at speed U along the pipe (see riser/internal_flow.py and
+# Contents flowing at speed U along the pipe (see riser/physics/internal_flow.py and
 # vfife/flow.py for the formulation): the contents mass per length mu_i at the nodes (a
 # travelling slug: mu_0 (1 + eta cos(k s - omega t + psi)) = mu_0 (1 + eta (C cos(omega t)
 # + S sin(omega t))) with C, S = cos, sin(k s + psi) precomputed, so no trigonometry per
@@ -720,7 +720,7 @@ def _end_translation(i, fx_on, gx, gy, x, y, vx, vy, wload, mass, im, pl0, pl1, 
 def wave_pass(x, y, z, t, amp, omega, k, phase, cosb, sinb, x0, z0, depth, wheeler, out):
     """Airy wave kinematics at the nodes (x, y, z) [m] at time t [s], summed over the
     components (amp [m], omega [rad/s], k [1/m], phase [rad], heading cosb, sinb; origin
-    x0, z0 [m]; mean surface at y = depth [m]; see :mod:`riser.waves` for the
+    x0, z0 [m]; mean surface at y = depth [m]; see :mod:`riser.physics.waves` for the
     convention eta = a cos(omega t - k (dx cos b + dz sin b) - eps)), without the ramp.
 
     out (21, n): rows 0-6 the values of (u_x, u_y, u_z [m/s], a_x, a_y, a_z [m/s2], eta
@@ -818,7 +818,7 @@ def wave_load_pass(x, y, z, vx, vy, vz, dx, dy, dz, U, Uz, cdir, cdn, cdt, cin, 
     and tangential as :func:`node_pass` has it; fluid inertia cin[0] a_n + cin[1] a_t, a =
     WV[3:6] the fluid acceleration split along the director, cin (2, n) = ((1 + C_a), 1)
     rho pi D^2 / 4 x tributary length [kg] (the Froude-Krylov force of the whole
-    acceleration and the added mass normal to the axis, :mod:`vfife.waves`). Each times
+    acceleration and the added mass normal to the axis, :mod:`vfife.dynamics.waves`). Each times
     the node's immersed fraction under the instantaneous surface WV[6] (:func:`node_pass`'s
     rule)."""
     n = x.shape[0]

@@ -1,7 +1,7 @@
 """Discretisation of a fixed-ends scene into VFIFE nodes and elements, and starting shapes.
 
 Elements never straddle a segment joint: each segment of length L gets ceil(L / h)
-equal elements. Element properties come from :func:`riser.sections.segment_properties`
+equal elements. Element properties come from :func:`riser.model.sections.segment_properties`
 (computed once for both solvers); nodal masses, weights, drag coefficients and inertias
 are lumped half-and-half from the two adjacent elements.
 """
@@ -15,9 +15,9 @@ import numpy as np
 from scipy.interpolate import CubicSpline
 from scipy.optimize import least_squares
 
-from riser.frame import LinePlane
-from riser.scene import Scene
-from riser.sections import segment_properties
+from riser.model.frame import LinePlane
+from riser.model.scene import Scene
+from riser.model.sections import segment_properties
 
 from .end_conditions import end_array
 
@@ -34,13 +34,13 @@ class Mesh:
         element length [m] and per-length section values (EA [N], EI [N m2], mass [kg/m],
         submerged weight [N/m, + down], diametral rotary inertia [kg m], added mass [kg/m],
         drag coefficients 0.5 rho D C_D [kg/m2], the water of the hydrodynamic section rho
-        pi D^2 / 4 [kg/m], riser.sections).
+        pi D^2 / 4 [kg/m], riser.model.sections).
     trib : (n,) tributary length of the nodes [m]; :meth:`lump` gives the other nodal
         values.
     end_springs : the rotational stiffness [N m/rad] of the flex joints at the anchor
         (node 0) and the hang-off (node n - 1), 0 without one (their nodes' stable step).
     point_weight, point_mass, point_added, point_drag : (n,) the point attachments on the
-        nodes (riser/attachments.py; a node at each): net weight [N, + down], mass [kg],
+        nodes (riser/model/attachments.py; a node at each): net weight [N, + down], mass [kg],
         added mass C_a rho V [kg], drag 0.5 rho C_D A [kg/m]; zeros without (None is
         read as zeros).
     """
@@ -169,13 +169,13 @@ def catenary_shape(scene: Scene, s_nodes: np.ndarray, grid_step: float = 1.0,
     Otherwise the line hangs from the anchor with the unknown vertical force V0 there.
     The two unknowns are found by least squares so the end lands on the hang-off.
     The catenary lies in the vertical plane through the two ends (x, y for ends in one
-    plane z = const, which keeps their z; else :class:`riser.frame.LinePlane`: it is
+    plane z = const, which keeps their z; else :class:`riser.model.frame.LinePlane`: it is
     computed in (xi, y), xi the horizontal distance from the anchor along the plane, and
     positions and tangents are mapped back to (x, z)); node 0 is put on the anchor and the
     last node on the hang-off.
     ``uniform_weight`` [N/m]: the shape of a line of that uniform submerged weight instead
     of the scene's (the start of a continuation in the weight, see
-    :func:`vfife.statics.solve_static`).
+    :func:`vfife.statics.equilibrium.solve_static`).
     Returns (X (n, 3), D (n, 3) unit tangents, info dict; info 'catenary_below_seabed_m':
     how far the EI = 0 shape passed below the seabed before it was clamped onto it).
     """

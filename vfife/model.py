@@ -14,15 +14,15 @@ import math
 
 import numpy as np
 
-from riser.internal_flow import contents_mass_per_length
-from riser.scene import Scene
+from riser.physics.internal_flow import contents_mass_per_length
+from riser.model.scene import Scene
 
 from . import kernels
 from .end_conditions import clamped_ends, end_array
 from .flow import flow_arrays
 from .mesh import Mesh
 from .recovery import Recovery
-from .waves import WaveLoads
+from .dynamics.waves import WaveLoads
 
 #: largest contact damping ratio used by the explicit step (scene values above are clamped)
 MAX_CONTACT_ZETA = 1.0
@@ -55,7 +55,7 @@ class Model:
         zero) runs no dead-load work. It does not follow the line's shape (unlike drag),
         so a line under it has a closed form (tests). A z component needs ``planar``
         False.
-    waves : load the line with the scene's waves (dynamics; :mod:`vfife.waves`), when the
+    waves : load the line with the scene's waves (dynamics; :mod:`vfife.dynamics.waves`), when the
         scene has waves with ``line_loads``; otherwise no wave kernel runs.
     """
 
@@ -136,7 +136,7 @@ class Model:
         self.vfric = 0.01          # [m/s] Coulomb friction regularisation speed
         self.use_surface = bool(surface and scene.water_depth is not None)
         # the surface's height at each node [m] (the mean level; with waves the kernels
-        # take the instantaneous one, vfife.waves)
+        # take the instantaneous one, vfife.dynamics.waves)
         self.ysurf = np.full(n, float(scene.water_depth) if self.use_surface else math.inf)
         self.wair = scene.gravity * mass_air   # weight in air [N] (pipe + contents, points)
         self.iair = 1.0 / self.mass
@@ -145,7 +145,7 @@ class Model:
         self.F = np.zeros((k, ne))
         self.MA = np.zeros((k - 1 if planar else 3, ne))
         self.MB = np.zeros_like(self.MA)
-        # axial dashpot per element [N s/m] (statics only, see vfife.statics; zero and not
+        # axial dashpot per element [N s/m] (statics only, see vfife.statics.equilibrium; zero and not
         # run unless set with :meth:`set_axial_dashpot`)
         self.eta = np.zeros(ne)
         self.use_dashpot = False
@@ -211,7 +211,7 @@ class Model:
 
     def set_static_inertia(self, mass, jrot) -> None:
         """Fictitious nodal masses [kg] and rotational inertias [kg m2] (statics only, see
-        :func:`vfife.relaxation.static_inertia`): isotropic (no added mass), the contact
+        :func:`vfife.statics.relaxation.static_inertia`): isotropic (no added mass), the contact
         damping re-scaled so that its damping ratio stays the scene's."""
         self.mass = np.asarray(mass, float).copy()
         self.madd = np.zeros(self.mesh.n)
@@ -263,7 +263,7 @@ class Model:
         """Advance up to ``nsteps`` steps of ``dt`` [s] with damping ``c`` [1/s]; the
         hang-off follows ``top0 + top_disp[:, k]`` (top_disp (3, nsteps + 1) [m]; default:
         stays put). With waves, the kinematics' Taylor coefficients must have been set at
-        the start of the call (:meth:`vfife.waves.WaveLoads.evaluate`).
+        the start of the call (:meth:`vfife.dynamics.waves.WaveLoads.evaluate`).
         Returns (steps, force residual [N], moment residual [N m], kinetic energy [J],
         status 0 done / 1 converged / 2 blow-up)."""
         if top_disp is None:

@@ -8,24 +8,24 @@ import time
 
 import numpy as np
 
-from riser import validity
+from riser.results import validity
 from riser.design import checks as design_checks
 from riser.errors import UnsupportedSceneError
-from riser.frame import LinePlane, elevation, plane_columns
-from riser.internal_flow import wall_tension
+from riser.model.frame import LinePlane, elevation, plane_columns
+from riser.physics.internal_flow import wall_tension
 from riser.io.scene_file import scene_from_dict
-from riser.profile import Profile
-from riser.result import DynamicsResult, SolveResult, Status
-from riser.scene import Scene
+from riser.results.profile import Profile
+from riser.results.result import DynamicsResult, SolveResult, Status
+from riser.model.scene import Scene
 
-from .dynamic_outputs import touchdown_s
-from .dynamics import DynamicsOutcome, run_dynamics
+from .dynamics.outputs import touchdown_s
+from .dynamics.run import DynamicsOutcome, run_dynamics
 from .end_conditions import clamped_ends
 from .ends import require_fixed_ends
 from .mesh import build_mesh
 from .model import Model, checked_dead_load
-from .relaxation import RelaxOutcome
-from .statics import solve_static
+from .statics.relaxation import RelaxOutcome
+from .statics.equilibrium import solve_static
 
 _COMPILED = {"done": False, "compile_s": 0.0}
 
@@ -167,7 +167,7 @@ def make_profile(model: Model, scene: Scene) -> Profile:
     out of its plane (:func:`static_out_of_plane`: a 3D static state, or a dead load along
     z) carries
     the columns ``lateral`` [m] (offset from the vertical plane through the ends),
-    ``moment_in_plane`` and ``moment_out_of_plane`` [N m] (:func:`riser.frame.plane_columns`);
+    ``moment_in_plane`` and ``moment_out_of_plane`` [N m] (:func:`riser.model.frame.plane_columns`);
     a planar one leaves them None."""
     r = model.nodal_results()
     X = model.positions()
@@ -183,7 +183,7 @@ def make_profile(model: Model, scene: Scene) -> Profile:
     if static_out_of_plane(scene, model.dead_load):
         # the nodal moment vector (Model.nodal_results) is the end moment of the elements
         # meeting at the node, -EI t x t' (a planar line's z component is minus its
-        # signed moment); the line's bending moment EI t x t' (riser.frame's convention,
+        # signed moment); the line's bending moment EI t x t' (riser.model.frame's convention,
         # the BVP's m) is its opposite
         lateral, inplane, oop = plane_columns(plane, X[:, 0], X[:, 2], D,
                                               -r["moment_vector"].T)
@@ -220,7 +220,7 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
     None, with the reason in ``message``.
     ``wall_time_s`` excludes Numba compilation (reported as info['compile_s']).
     checkpoint_at [s]: with [dynamics], keep the run's state at that time as
-    ``result.dynamics.checkpoint`` (:func:`vfife.dynamics.run_dynamics`).
+    ``result.dynamics.checkpoint`` (:func:`vfife.dynamics.run.run_dynamics`).
     """
     vf = scene.vfife.override(element_length=element_length, static_tolerance=tolerance)
     h, tol = vf.element_length, vf.static_tolerance
@@ -259,7 +259,7 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
             "force_residual": sinfo["residual"], "moment_residual": sinfo["moment_residual"],
             "creep_m": sinfo["creep_m"], "creep_tolerance_m": sinfo["creep_tolerance_m"],
             # estimated change still to come of the element tensions / the largest and of
-            # the end moments / the largest (the final mesh's tests, vfife.relaxation.relax)
+            # the end moments / the largest (the final mesh's tests, vfife.statics.relaxation.relax)
             "tension_to_come": sinfo["tension_to_come"],
             "moment_to_come": sinfo["moment_to_come"],
             "tension_tolerance": sinfo["tension_tolerance"],
@@ -269,7 +269,7 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
             "kernel": "planar" if planar else "3d", "static_stages": sinfo["stages"],
             "catenary_tdp_s": sinfo.get("catenary_tdp_s"),
             "static_continuation": sinfo.get("continuation"),
-            # Newton's method on the finer meshes (vfife/newton.py): why it stopped where
+            # Newton's method on the finer meshes (vfife/statics/newton.py): why it stopped where
             # the relaxation took over (None: it converged, or did not apply)
             "static_newton_failed": sinfo.get("newton_failed")}
     effects = model.effects

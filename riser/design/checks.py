@@ -51,7 +51,7 @@ def static_columns(scene, s, y, tension, moment) -> dict:
 
 
 def apply(scene, profile) -> None:
-    """Set the design columns of ``profile`` (a :class:`riser.profile.Profile` of
+    """Set the design columns of ``profile`` (a :class:`riser.results.profile.Profile` of
     ``scene``, which has a [design]) in place."""
     cols = static_columns(scene, profile.s, profile.y, profile.tension, profile.moment)
     for name, values in cols.items():
@@ -92,7 +92,7 @@ def harmonic_columns(scene, s, y, tension, moment_in, amplitudes: dict) -> dict:
     response q = q_0 + Re(Q e^{i phi}) at stations ``s`` [m]: the static heights ``y``
     [m], effective tension [N] and in-plane moment [N m] (signed; a planar static state,
     no out-of-plane moment), ``amplitudes`` the complex Q of ``tension``, ``moment``,
-    ``moment_out`` [N m] and ``dy`` [m] (:mod:`riser.response`). The static state is the
+    ``moment_out`` [N m] and ``dy`` [m] (:mod:`riser.results.response`). The static state is the
     functional part, the harmonic the environmental one (as a dynamic run's samples);
     :data:`CYCLE_PHASES` phases, the largest kept (the phase grid's error in the peak is
     below 1 - cos(pi / 72) = 1e-3 of the dynamic part)."""

@@ -7,7 +7,7 @@ A method's recorder calls :meth:`DynamicDesign.sample` with its state (positions
 tangents, effective tension and bending-moment vectors at its stations, SI); the first
 call is the static state, the functional load effect of the checks
 (:mod:`riser.design.checks`). The moment vectors are resolved across the tangent into the
-in-plane and out-of-plane components of :mod:`riser.frame` (the line's plane through its
+in-plane and out-of-plane components of :mod:`riser.model.frame` (the line's plane through its
 ends).
 """
 
@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..frame import LinePlane, plane_columns
+from ..model.frame import LinePlane, plane_columns
 from . import dnv_f201
 from .checks import utilisation
 from .fatigue import time_domain
@@ -48,7 +48,7 @@ class DynamicDesign:
 
     def components(self, x, tangents, moment_vectors):
         """(M_in, M_out) [N m] of bending-moment vectors (n, 3) at stations with positions
-        ``x`` (n, 3) and unit tangents (n, 3) (:func:`riser.frame.plane_columns`)."""
+        ``x`` (n, 3) and unit tangents (n, 3) (:func:`riser.model.frame.plane_columns`)."""
         _, m_in, m_out = plane_columns(self.plane, x[:, 0], x[:, 2], tangents, moment_vectors)
         return m_in, m_out
 

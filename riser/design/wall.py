@@ -13,7 +13,7 @@ rho_c the contents' density, y_top the hang-off's height).
 
 Wall tension: T_w = T_e + mu U^2 + p_i A_i - p_e A_o, from the effective tension T_e the
 methods solve for (Sparsholt; with internal flow the momentum flux mu U^2 as in
-:mod:`riser.internal_flow`).
+:mod:`riser.physics.internal_flow`).
 
 Stresses, thick wall (Lame), at radius r (r_i <= r <= r_o):
     sigma_h = (p_i r_i^2 - p_e r_o^2) / (r_o^2 - r_i^2) + (p_i - p_e) r_i^2 r_o^2 / ((r_o^2 - r_i^2) r^2)
@@ -25,7 +25,7 @@ the hang-off) towards the plane's normal e_n,
     sigma_b = -(r / I) (M_in cos phi + M_out sin phi),
 M_in the bending moment signed as the planar moment (EI times the curvature, positive
 when the line turns towards n: the fibre on n's side is then in compression) and M_out
-the out-of-plane moment (:mod:`riser.frame`). Von Mises of the three principal stresses
+the out-of-plane moment (:mod:`riser.model.frame`). Von Mises of the three principal stresses
 (no torsion, no shear: the methods carry no torque on these lines and the shear stress
 of the shear force is ~1e-3 of the bending stress on a riser):
     sigma_vm = sqrt(((sigma_a - sigma_h)^2 + (sigma_h - sigma_r)^2 + (sigma_r - sigma_a)^2) / 2).

@@ -1,4 +1,4 @@
-"""Reading a scene file: TOML -> validated :class:`riser.scene.Scene`.
+"""Reading a scene file: TOML -> validated :class:`riser.model.scene.Scene`.
 
 The reader checks what the file adds to the model: TOML types, required and unknown keys,
 which end form the keys of ``[ends]`` select, and the file-only conveniences (the wall and
@@ -21,9 +21,9 @@ import tomllib
 from pathlib import Path
 
 from ..design.part import Design, Fatigue, SeaState
-from ..ends import FILE_KEYS as ENDS_FILE_KEYS
-from ..attachments import Attachment
-from ..ends import (
+from ..model.ends import FILE_KEYS as ENDS_FILE_KEYS
+from ..model.attachments import Attachment
+from ..model.ends import (
     EndJoint,
     FixedEnds,
     HangOffAngleEnds,
@@ -32,8 +32,8 @@ from ..ends import (
     TopTensionEnds,
 )
 from ..errors import SceneError
-from ..line import BORE, FILE_KEYS, POISSON_RATIO, LineType, Segment, check_bore
-from ..scene import (
+from ..model.line import BORE, FILE_KEYS, POISSON_RATIO, LineType, Segment, check_bore
+from ..model.scene import (
     MODEL_KEYS,
     Current,
     Dynamics,
@@ -42,10 +42,10 @@ from ..scene import (
     Seabed,
     TopMotion,
 )
-from ..settings import AnalyticSettings, BVPSettings, VFIFESettings
+from ..model.settings import AnalyticSettings, BVPSettings, VFIFESettings
 from ..spec import specs
-from ..vessel import RAOTable, Vessel
-from ..waves import WaveSpectrum, WaveTrain, Waves
+from ..physics.vessel import RAOTable, Vessel
+from ..physics.waves import WaveSpectrum, WaveTrain, Waves
 from .toml_table import Table
 
 # ---------------------------------------------------------------------- loading

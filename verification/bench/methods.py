@@ -11,8 +11,8 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from riser.scene import Scene
-from riser.transform import fixed_ends_scene
+from riser.model.scene import Scene
+from riser.model.transform import fixed_ends_scene
 from verification.catalog import resolve
 
 #: the Wang et al. (2014) scenes: the baseline and its currents (the BVP's Table 2 batch)
@@ -87,7 +87,7 @@ def design_scenes() -> tuple:
     of :data:`DESIGN_DURATION`). The scene's wave ramp (80 s) is longer than either run:
     each ramps its sea over the first third of its duration (a ramp longer than the run
     is refused, issue 44), the statistics start after it."""
-    from riser.dynamics import Dynamics
+    from riser.physics.dynamics import Dynamics
     base = resolve(DESIGN_SCENE)
 
     def run_of(duration: float):

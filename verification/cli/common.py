@@ -88,7 +88,7 @@ class Range:
 
 
 def spec_range(settings_class, name: str, what: str) -> Range:
-    """The :class:`Range` of a solver setting, from its field spec (riser/settings.py)."""
+    """The :class:`Range` of a solver setting, from its field spec (riser/model/settings.py)."""
     sp = next(f for f in dataclasses.fields(settings_class) if f.name == name).metadata["spec"]
     lo = sp.gt if sp.gt is not None else sp.ge
     return Range(lo, sp.le, integer=sp.kind == "integer", lo_open=sp.gt is not None,
@@ -127,7 +127,7 @@ MAX_JOBS = 1024
 
 
 def _settings_ranges() -> tuple[Range, Range]:
-    from riser.settings import BVPSettings, VFIFESettings
+    from riser.model.settings import BVPSettings, VFIFESettings
     return (spec_range(BVPSettings, "tolerance", "the BVP's tolerance, [bvp] tolerance"),
             spec_range(VFIFESettings, "element_length",
                        "the VFIFE's element length, [vfife] element_length"))
@@ -155,7 +155,7 @@ def out_folder(args, default: Path, names: tuple[str, ...]) -> Path:
 def check_overrides(scene, args) -> None:
     """Validate the command-line overrides exactly like their scene keys (the settings'
     one validator), naming the option: ``error: command line: --element-length: ...``."""
-    from riser.validity import check_resolution
+    from riser.results.validity import check_resolution
     options = {"--tolerance": ("bvp", "tolerance", getattr(args, "tolerance", None)),
                "--element-length": ("vfife", "element_length",
                                     getattr(args, "element_length", None))}

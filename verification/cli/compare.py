@@ -31,8 +31,8 @@ def cmd_compare(args) -> int:
         from riser.errors import SceneError
         raise SceneError("command line", "--amplitudes", "only with --dynamics (the "
                          "amplitude sweep of the dynamic comparison)")
-    from verification.comparison.protocol import compare, default_columns
-    from verification.comparison.report import write
+    from verification.comparison.static.protocol import compare, default_columns
+    from verification.comparison.static.report import write
     files = outdir.COMPARE + tuple(f for name in peers.names() for f in peers.peer(name).files)
     outdir.clear(args.out, files)
     # with --peer, the peer checks its segment length against the line (a tenth of it)
@@ -83,12 +83,13 @@ def parse_amplitudes(text: str | None) -> list[float] | None:
 def cmd_compare_dynamics(args) -> int:
     """``compare SCENE --dynamics``: the static comparison, then the scene's harmonic
     motion (or regular wave) by the frequency domain and the VFIFE
-    (verification.comparison.dynamics); an irregular sea: cmd_compare_sea."""
-    from verification.comparison import dynamics_report, sea_report
-    from verification.comparison.dynamics import check_motions, compare_dynamics
-    from verification.comparison.protocol import compare, default_columns
-    from verification.comparison.report import report_markdown, write
-    from verification.comparison.sea_dynamics import is_sea
+    (verification.comparison.dynamic.protocol); an irregular sea: cmd_compare_sea."""
+    from verification.comparison.dynamic import report as dynamics_report
+    from verification.comparison.sea import report as sea_report
+    from verification.comparison.dynamic.protocol import check_motions, compare_dynamics
+    from verification.comparison.static.protocol import compare, default_columns
+    from verification.comparison.static.report import report_markdown, write
+    from verification.comparison.sea.protocol import is_sea
     files = outdir.COMPARE + dynamics_report.FILES + sea_report.FILES + tuple(
         f for name in peers.names() for f in peers.peer(name).files)
     outdir.clear(args.out, files)
@@ -125,11 +126,11 @@ def cmd_compare_dynamics(args) -> int:
 def cmd_compare_sea(args, scene, files) -> int:
     """``compare SCENE --dynamics`` of a scene with an irregular sea: the static
     comparison, then the sea by the frequency domain and the VFIFE's record
-    (verification.comparison.sea_dynamics)."""
-    from verification.comparison import sea_report
-    from verification.comparison.protocol import compare, default_columns
-    from verification.comparison.report import report_markdown, write
-    from verification.comparison.sea_dynamics import check_sea, compare_sea
+    (verification.comparison.sea.protocol)."""
+    from verification.comparison.sea import report as sea_report
+    from verification.comparison.static.protocol import compare, default_columns
+    from verification.comparison.static.report import report_markdown, write
+    from verification.comparison.sea.protocol import check_sea, compare_sea
     if args.amplitudes:
         raise SceneError("command line", "--amplitudes", "not with an irregular sea (its "
                          "Hs is the scene's)")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from riser.result import Status
+from riser.results.result import Status
 from verification.catalog import list_builtin, resolve
 from verification.methods import METHODS
 from verification.runtime import outdir

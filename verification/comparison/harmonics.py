@@ -2,7 +2,7 @@
 amplitude and phase, the higher harmonics and the envelope, by least squares on whole
 periods of a window.
 
-Convention (the frequency domain's, :mod:`bvp.harmonic`): a signal
+Convention (the frequency domain's, :mod:`bvp.frequency.harmonic`): a signal
     q(t) = q_0 + Re(Q_1 e^{i omega t}) + Re(Q_2 e^{2 i omega t}) + ...
 so a motion d(t) = A sin(omega t) has Q_1 = -i A (amplitude A, phase -90 deg). The
 amplitude of a harmonic is |Q_k|, its phase arg(Q_k) [rad]. The fit is least squares on

@@ -4,8 +4,8 @@ agreement (``riser-verify modes SCENE [--count N] [--out DIR]``).
 Both methods analyse the same fixed-ends scene, :func:`verification.pipeline.
 vfife_equivalent` of the scene (a Wang-form scene is converted; its arc lengths are then
 reported from the BVP touchdown, the converted s minus ``s_shift``), each about its own
-static equilibrium (``bvp.modes.solve_modes``, ``vfife.modes.solve_modes``; the shared
-model is stated in :mod:`riser.modes`, its equations in :mod:`bvp.modes`: undamped, the
+static equilibrium (``bvp.modal.modes.solve_modes``, ``vfife.modal.modes.solve_modes``; the shared
+model is stated in :mod:`riser.results.modes`, its equations in :mod:`bvp.modal.modes`: undamped, the
 static drag of a current frozen as a dead load). Modes are paired by plane and number; the
 agreement of a pair is the relative frequency difference of the VFIFE from the BVP and
 the MAC of the two shapes interpolated on the VFIFE's nodes (inside the arc-length range
@@ -28,8 +28,8 @@ import numpy as np
 
 from riser.callbacks import with_fraction
 from riser.errors import UnsupportedSceneError
-from riser.modes import PLANES, ModalResult, mac, shape_at
-from riser.result import Status
+from riser.results.modes import PLANES, ModalResult, mac, shape_at
+from riser.results.result import Status
 from verification.methods import method
 from verification.pipeline import vfife_equivalent
 from verification.report.figures import new_figure, save
@@ -201,7 +201,7 @@ def markdown(run: ModesRun) -> str:
     n_ok = sum(r["meets"] for r in run.rows)
     lines = [f"# Natural modes: {run.scene}", "", GENERATED_NOTE, "",
              "Undamped modes of small vibration about the static state, by both methods "
-             "(`riser/modes.py`: mass pipe + contents with the added mass normal to the axis, "
+             "(`riser/results/modes.py`: mass pipe + contents with the added mass normal to the axis, "
              "the elastic seabed as vertical springs where the line lies on it, the static "
              "drag of a current held as a dead load, fixed in magnitude and direction as the "
              "line moves; no drag damping or friction). Target: |frequency difference| <= "

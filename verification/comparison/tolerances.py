@@ -1,11 +1,11 @@
 """Agreement tolerances of the static VFIFE-vs-BVP comparison protocol: the one place they
 live. One table per protocol, each in one module, each tolerance with its reason: the
-dynamic protocol's in :data:`verification.comparison.dynamic_rows.TOLERANCES`, the
-irregular sea's in :data:`verification.comparison.sea_dynamics.TOLERANCE`, the MoorDyn
+dynamic protocol's in :data:`verification.comparison.dynamic.rows.TOLERANCES`, the
+irregular sea's in :data:`verification.comparison.sea.protocol.TOLERANCE`, the MoorDyn
 column's in :data:`verification.peers.moordyn.column.TOLERANCES`.
 
 Both methods solve the same continuum model (extensible line on a unilateral Winkler
-seabed of the scene's stiffness; see :mod:`verification.comparison.protocol`), so a tolerance only
+seabed of the scene's stiffness; see :mod:`verification.comparison.static.protocol`), so a tolerance only
 has to cover the discretisation of each method, not a model difference. Each entry is
 (kind, value):
 
@@ -42,7 +42,7 @@ Worst value of each row and its scene are quoted below. The profile metrics are 
 at the VFIFE nodes, the BVP interpolated there (issue 11 put the BVP tension through the
 VFIFE's former nodal mean of two elements; since issue 29 the VFIFE recovers its nodal
 tension to second order at the joints, ``vfife.recovery``, and both are point values;
-see :mod:`verification.comparison.agreement`). Reasons: VFIFE positions and tension converge at least
+see :mod:`verification.comparison.static.agreement`). Reasons: VFIFE positions and tension converge at least
 as fast as the second order in the element length (Yu A1: configuration 0.0135 % ->
 0.0022 % of depth from 1 m to 0.5 m); its moment, from element end rotations, carries a
 first-order error at the sharpest moment peak, the seabed lift-off (foundation length
@@ -194,7 +194,7 @@ def scene_scales(scene, hang_off_tension: float, depth: float) -> dict:
     """The floors of the relative tolerances of a static comparison of ``scene``:
     ``{"moment_floor": w lambda^2 [N m], "tension_floor": w_net depth [N]}`` (module notes,
     FLOORS) with ``hang_off_tension`` [N] the BVP's, ``depth`` [m] the comparison's."""
-    from riser.sections import segment_properties
+    from riser.model.sections import segment_properties
     props = segment_properties(scene)
     w = max(abs(p.weight) for p in props)
     EI = max(p.EI for p in props)

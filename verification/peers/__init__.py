@@ -26,7 +26,7 @@ class Peer:
     require : raises a one-line :class:`~riser.errors.SceneError` (exit 2) when its code
         is not installed, before anything runs.
     column : ``column(scene, segment_length)`` -> its
-        :class:`~verification.comparison.columns.Column` for ``compare``, the options
+        :class:`~verification.comparison.static.columns.Column` for ``compare``, the options
         checked against the scene (``segment_length``: ``--peer-segment-length`` [m]).
     files : the files its column writes under a comparison's folder (cleared first).
     bench : ``bench(scene, log)`` -> the record of ``bench --peer`` on ``scene``;

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from riser.result import DynamicsResult
+from riser.results.result import DynamicsResult
 
 from .figures import new_figure, save
 from .units import with_unit

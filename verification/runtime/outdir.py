@@ -5,7 +5,7 @@ below, and nothing else: a foreign file in the folder is kept, the folder itself
 removed), before it reads its input. So a run that is refused (exit 2), fails (exit 1) or
 is interrupted leaves no profile, table or report of an earlier run that could be taken
 for its own; a failed solve still writes a ``summary.json`` stating the failure
-(:meth:`riser.result.SolveResult.write`). The same step checks that the folder can be
+(:meth:`riser.results.result.SolveResult.write`). The same step checks that the folder can be
 written (:func:`check_writable`), so a read-only folder is bad input said before any
 solving, not a lost result at the end.
 

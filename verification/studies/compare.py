@@ -1,7 +1,7 @@
 """The comparison study of ``riser-verify reproduce compare``: every built-in scene but the
 hard cases (the stress suite's) and the sea-state and design scenes (their studies')
 compared by the protocol of
-:mod:`verification.comparison.protocol`, one unit per scene into
+:mod:`verification.comparison.static.protocol`, one unit per scene into
 ``reports/compare/SCENE/`` (the files of ``riser-verify compare``)."""
 
 from __future__ import annotations
@@ -13,8 +13,8 @@ import pandas as pd
 
 from riser.errors import SolveFailed
 from verification.catalog import COMPARE_SCENES, resolve
-from verification.comparison.protocol import compare
-from verification.comparison.report import write
+from verification.comparison.static.protocol import compare
+from verification.comparison.static.report import write
 from verification.runtime.stable import QUANTA
 
 from .study import Study

@@ -3,7 +3,7 @@ in 3D over the current's heading (issue 32). For the steel catenary riser and Yu
 wave under the current profile of the 3D built-in scenes (0.2 m/s at the seabed to
 0.8 m/s at the surface), the heading sweeps from along the plane of the ends towards the
 hang-off (0 deg) through across it (90 deg) to along it towards the anchor (180 deg); each
-heading is compared by the protocol of :mod:`verification.comparison.protocol` (the
+heading is compared by the protocol of :mod:`verification.comparison.static.protocol` (the
 planar scenes at 0 and 180 deg by the planar BVP, the others by its 3D rod) at the
 VFIFE's default element length. One unit per scene into ``reports/cross_current/SCENE/``:
 ``agreement.csv`` (a row per heading and protocol quantity), ``headings.csv`` (per
@@ -21,7 +21,7 @@ import pandas as pd
 
 from riser.errors import SolveFailed
 from verification.catalog import resolve
-from verification.comparison.protocol import compare
+from verification.comparison.static.protocol import compare
 from verification.report.figures import new_figure, save
 from verification.report.markdown import md_table, timed
 

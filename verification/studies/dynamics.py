@@ -1,6 +1,6 @@
 """The dynamic study of ``riser-verify reproduce dynamics``: the response to a harmonic
 hang-off motion by the frequency domain about the BVP static state and by the VFIFE's time
-domain (:mod:`verification.comparison.dynamics`), one unit per scene into
+domain (:mod:`verification.comparison.dynamic.protocol`), one unit per scene into
 ``reports/dynamics/SCENE/``.
 
 Per scene: heave (y) and surge (x) at two periods, each between two adjacent in-plane
@@ -19,7 +19,7 @@ that is not a discretisation difference.
 Files per scene: ``cases.csv`` (one row per case and amplitude: the rows of the dynamic
 comparison and the FD and VFIFE times), ``convergence.csv`` (element_length_m and the
 same differences), ``report.md``, the static comparison's files and one folder per case
-with the dynamic comparison's files (:mod:`verification.comparison.dynamics_report`).
+with the dynamic comparison's files (:mod:`verification.comparison.dynamic.report`).
 """
 
 from __future__ import annotations
@@ -31,13 +31,13 @@ import numpy as np
 import pandas as pd
 
 from verification.catalog import resolve
-from verification.comparison import dynamics_report
-from verification.comparison.dynamics import compare_dynamics
-from verification.comparison.protocol import compare, default_columns
-from verification.comparison.report import write as write_static
+from verification.comparison.dynamic import report as dynamics_report
+from verification.comparison.dynamic.protocol import compare_dynamics
+from verification.comparison.static.protocol import compare, default_columns
+from verification.comparison.static.report import write as write_static
 from verification.runtime import stable
 from verification.report.markdown import GENERATED_NOTE, md_table, pct, timed
-from riser.dynamics import Dynamics, TopMotion
+from riser.physics.dynamics import Dynamics, TopMotion
 from riser.errors import SceneError
 
 from .study import Study

@@ -30,10 +30,10 @@ import numpy as np
 import pandas as pd
 
 from riser.errors import SceneError, SolveFailed
-from riser.result import Status
-from riser.scene import FixedEnds
+from riser.results.result import Status
+from riser.model.scene import FixedEnds
 from verification.catalog import SCENE_DIR, resolve
-from verification.comparison.agreement import agreement, unresolved_bending
+from verification.comparison.static.agreement import agreement, unresolved_bending
 from verification.pipeline import solve_scene
 from verification.quantities import reference_depth
 from verification.report.markdown import GENERATED_NOTE, fmt, md_table, timed
@@ -84,7 +84,7 @@ def run_one(name: str, method: str, progress=None) -> tuple[dict, object]:
     if res is None:
         return row, None
     row["message"] = res.message
-    if not res.converged:            # a failed result holds no profile (riser.result)
+    if not res.converged:            # a failed result holds no profile (riser.results.result)
         row["outcome"] = OUTCOME[res.status]
         return row, None
     problems = []

@@ -14,7 +14,7 @@ is run again by the next sweep; the methods' own statuses (converged, refused,
 not_converged, ...) are final.
 
 The method agreement of a case is the protocol of ``riser-verify compare``
-(:func:`verification.comparison.agreement.agreement`: the same rows, tolerances and bases) on the two
+(:func:`verification.comparison.static.agreement.agreement`: the same rows, tolerances and bases) on the two
 profiles, assessed when both converged on the same continuum model (``SolveResult.model``):
 a Wang-form scene's BVP solves its paper model when the VFIFE cannot, and then the
 difference is a model difference, not a defect.
@@ -32,10 +32,10 @@ from pathlib import Path
 import numpy as np
 
 from riser.errors import SceneError, SolveFailed
-from riser.profile import OPTIONAL_COLUMNS, Profile, summarize, write_json
+from riser.results.profile import OPTIONAL_COLUMNS, Profile, summarize, write_json
 from verification.runtime.interrupts import reraise_interrupt
 
-#: the scalar summary quantities kept per method (riser.profile.summarize's names)
+#: the scalar summary quantities kept per method (riser.results.profile.summarize's names)
 SUMMARY_KEYS = ("hang_off_tension", "hang_off_angle_deg", "max_tension", "max_tension_s",
                 "min_tension", "max_moment", "max_moment_s", "max_shear", "tdp_x",
                 "tdp_tension", "span", "length", "max_lateral_offset", "max_lateral_offset_s")
@@ -86,7 +86,7 @@ def _solve(scene, method: str) -> tuple[dict, object]:
 
 
 def _agreement(scene, results: dict) -> dict:
-    from verification.comparison.agreement import agreement, unresolved_bending
+    from verification.comparison.static.agreement import agreement, unresolved_bending
     from verification.quantities import reference_depth
     b, v = results.get("bvp"), results.get("vfife")
     if b is None or v is None or not b.converged or not v.converged:

@@ -35,10 +35,10 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from riser import validity
+from riser.results import validity
 from riser.errors import SceneError
 from riser.io.scene_file import is_file, load_scene, path_problem, read_text, scene_from_dict
-from riser.scene import Scene
+from riser.model.scene import Scene
 from verification.catalog import builtin_paths, resolve
 from verification.methods import METHODS
 
@@ -353,9 +353,9 @@ def _refuse_inert(source: str, base_scene: Scene, vary, fixed: dict, methods) ->
 def presolve_checks(scene: Scene, methods) -> None:
     """What the methods check of a scene before solving it (raising SceneError, as a
     plain ``solve`` of it is refused, exit 2): a tensioner's pull against the line's
-    weight and a free end's buoyancy (both methods: riser.validity.check_end_loads), the
+    weight and a free end's buoyancy (both methods: riser.results.validity.check_end_loads), the
     VFIFE's element length against the line, its segments and a slug
-    (riser.validity.check_resolution)."""
+    (riser.results.validity.check_resolution)."""
     validity.check_end_loads(scene)
     if "vfife" in methods:
         validity.check_resolution(scene, scene.vfife.element_length)

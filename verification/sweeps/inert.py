@@ -9,10 +9,10 @@ varied or set under ``[set]``:
 
 - ``environment.waves`` and ``vessel``: the waves load the line and move the vessel (and
   through its RAOs the hang-off) in a dynamic run only; the static hang-off is
-  ``ends.hang_off`` (riser/waves.py, riser/vessel.py);
+  ``ends.hang_off`` (riser/physics/waves.py, riser/physics/vessel.py);
 - ``design.fatigue``: the fatigue of a dynamic run (``riser-verify fatigue``);
 - ``vfife.time_step``, ``vfife.rotational_inertia_scale_dynamics``: the VFIFE's dynamic
-  integration only (riser/settings.py; statics has ``static_time_step``);
+  integration only (riser/model/settings.py; statics has ``static_time_step``);
 - a method's settings table (``[bvp]``, ``[vfife]``, ``[analytic]``) when the sweep does
   not run that method, except ``[bvp]`` when the VFIFE converts a touchdown-form case to
   fixed ends from the BVP's solution (:func:`verification.pipeline.vfife_equivalent`).
@@ -25,7 +25,7 @@ sweep over them is how their effect is measured.
 
 from __future__ import annotations
 
-from riser.ends import FixedEnds
+from riser.model.ends import FixedEnds
 
 #: key-path prefix -> why a static sweep case never reads it
 STATIC_INERT = {

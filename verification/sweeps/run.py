@@ -20,7 +20,7 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from riser.result import Status
+from riser.results.result import Status
 from verification.runtime.engine import Engine
 from verification.runtime.interrupts import held_interrupts
 from verification.runtime.progress import UnitTracker
@@ -89,7 +89,7 @@ class SweepRun:
 
     def warned(self) -> list[tuple[int, str, list[str]]]:
         """(case, method, warnings) of every converged result outside its model's validity
-        (riser/validity.py: strain, resolution, surface, seabed, compression)."""
+        (riser/results/validity.py: strain, resolution, surface, seabed, compression)."""
         return [(r["index"], m, d["warnings"]) for r in self.records
                 for m, d in r["methods"].items()
                 if d["status"] == Status.CONVERGED and d.get("warnings")]

@@ -47,8 +47,8 @@ import math
 from dataclasses import dataclass, field
 
 from ...errors import UnsupportedSceneError
-from ...scene import FixedEnds, Scene
-from ...sections import segment_properties
+from ...model.scene import FixedEnds, Scene
+from ...model.sections import segment_properties
 from .deck import OPTION_KEYS, Deck, DeckLine, DeckLineType, DeckPoint
 from .waves import wave_file_text
 
@@ -338,7 +338,7 @@ def _options(scene: Scene, deck: Deck, sec0: tuple, depth: float, notes: list[st
 def _current_profile(scene: Scene, depth: float) -> str:
     """MoorDyn's current_profile.txt: three header lines, then 'z ux uy uz' rows, the
     velocity's components at each of the scene's heights (MoorDyn interpolates them
-    component by component, as the scene does: :meth:`riser.environment.Current.velocity`),
+    component by component, as the scene does: :meth:`riser.physics.environment.Current.velocity`),
     the scene's (x, z) mapped to MoorDyn's (X, -Y)."""
     cur = scene.current
     if cur.turns:

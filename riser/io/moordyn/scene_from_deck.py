@@ -46,7 +46,7 @@ import re
 from pathlib import Path
 
 from ...errors import SceneError
-from ...scene import Scene
+from ...model.scene import Scene
 from ..scene_file import scene_from_dict
 from ..toml_text import dumps
 from .current import read_current

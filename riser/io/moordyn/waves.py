@@ -1,6 +1,6 @@
 """Waves in a MoorDyn deck: MoorDyn-C's ``WaveKin 7`` (summed wave components) and its
 ``wave_frequencies.txt``, read into a scene's ``[environment.waves]`` trains and written
-from a scene's components (:meth:`riser.waves.Waves.components`, the same realisation).
+from a scene's components (:meth:`riser.physics.waves.Waves.components`, the same realisation).
 
 MoorDyn-C 2.7's conventions (its source, ``source/Waves.cpp`` ``Waves::setup``,
 ``source/Waves/WaveSpectrum.cpp`` ``spectrumFromFile``, ``source/Waves/SpectrumKin.cpp``;
@@ -26,7 +26,7 @@ each measured on moordyn 2.7.2 with ``GetWavesKin``, tests/test_moordyn_waves.py
   over that time, the current's with the waves (measured: 1.04 % of the drag at a tenth of
   the ramp, (1/10)^2), not what ``GetWavesKin`` reports.
 
-The scene's convention (:mod:`riser.waves`): eta = a cos(omega t - k d - eps), d = (x - x0)
+The scene's convention (:mod:`riser.physics.waves`): eta = a cos(omega t - k d - eps), d = (x - x0)
 cos b + (z - z0) sin b, eps the phase lag at the origin (x0, z0). With the deck's frame of
 :mod:`riser.io.moordyn.scene_from_deck` (x along the ends' horizontal direction e_x from
 the bottom end B, z along e_z = (e_x,Y, -e_x,X)): a = |A|, eps = 90 deg - arg A, the

@@ -25,7 +25,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from riser.scene import Dynamics, Scene, TopMotion
+from riser.model.scene import Dynamics, Scene, TopMotion
 
 from .run import RESIDUAL_TOL, STEP_FRACTION, _residual, _to_log, close, require, start
 

@@ -4,7 +4,7 @@ MoorDyn solves the scene's exported deck (:mod:`riser.io.moordyn.deck_from_scene
 weight, drag and seabed per metre) with its own method: a lumped-mass line whose bending
 acts through the angle between adjacent segments, joints between lines that are hinges,
 and its own static solver (:mod:`verification.peers.moordyn.run`). Its profile is compared with
-the BVP's by the protocol's own rows (:func:`verification.comparison.agreement.agreement`: at MoorDyn's
+the BVP's by the protocol's own rows (:func:`verification.comparison.static.agreement.agreement`: at MoorDyn's
 nodes, the BVP interpolated there, its tension through the same nodal average, since a
 MoorDyn interior node also reports the mean of its two segments), outside the verdict and
 against tolerances of its own, :data:`TOLERANCES`, each with its reason. On a 3D scene
@@ -18,9 +18,9 @@ from pathlib import Path
 
 import numpy as np
 
-from riser.profile import Profile
-from verification.comparison.agreement import agreement
-from verification.comparison.columns import ColumnResult, verdict_values
+from riser.results.profile import Profile
+from verification.comparison.static.agreement import agreement
+from verification.comparison.static.columns import ColumnResult, verdict_values
 from verification.comparison.tolerances import base_name
 from verification.pipeline import shifted
 from verification.quantities import signed_moment
@@ -90,7 +90,7 @@ def lateral_rows(ref: Profile, md: Profile, depth: float) -> list[dict]:
     of the protocol's rows: the BVP's value under ``bvp``, MoorDyn's under ``vfife``): the
     largest difference of the lateral offset at MoorDyn's nodes (the BVP interpolated
     there). The protocol's own 3D rows (the out-of-plane moment, the lateral excursion,
-    ...) come with :func:`~verification.comparison.agreement.agreement`."""
+    ...) come with :func:`~verification.comparison.static.agreement.agreement`."""
     if ref.lateral is None or md.lateral is None:
         return []
     lo, hi = max(ref.s[0], md.s[0]), min(ref.s[-1], md.s[-1])

@@ -12,7 +12,7 @@ import numpy as np
 from riser.errors import SceneError
 from riser.io.moordyn.deck_from_scene import ExportedDeck, export_scene
 from riser.io.moordyn.waves import WAVE_FILE
-from riser.scene import FixedEnds, Scene
+from riser.model.scene import FixedEnds, Scene
 from verification import pipeline
 from verification.runtime.interrupts import reraise_interrupt
 

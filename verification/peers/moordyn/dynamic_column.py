@@ -17,8 +17,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from verification.comparison.dynamic_rows import wrap_deg
-from verification.comparison.dynamics import ORBIT, RAMP_PERIODS, SETTLE_PERIODS, dynamic_scene
+from verification.comparison.dynamic.rows import wrap_deg
+from verification.comparison.dynamic.protocol import ORBIT, RAMP_PERIODS, SETTLE_PERIODS, dynamic_scene
 from verification.report.markdown import md_table, pct
 
 #: MoorDyn's tolerance: its 10 m segments lump the line's inertia at the nodes, its end

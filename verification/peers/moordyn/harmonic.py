@@ -22,7 +22,7 @@ How it runs:
   s): with c = 0.05 s the node forces at the samples gave 0.2 of the nodes' acceleration
   near the hang-off and the hang-off tension amplitude came out 5 % low, flat over the
   top 120 m; given every step, force / mass matches the acceleration within 0.5 %.
-- **Motion**: d(t) of :func:`riser.hang_off_motion.axis_displacement` (A sin(2 pi t / T) times the
+- **Motion**: d(t) of :func:`riser.physics.hang_off_motion.axis_displacement` (A sin(2 pi t / T) times the
   half-cosine ramp), given at t_k = k dt as x_k = top + d(t_k) e and v_k = (d(t_k + dt) -
   d(t_k)) / dt e, the central difference of d at the step's midpoint: the path is the
   continuous piecewise-linear interpolant of d(t) at the steps (the analytic d'(t_k)
@@ -63,8 +63,8 @@ from pathlib import Path
 import numpy as np
 
 from riser.errors import SceneError
-from riser.hang_off_motion import axis_displacement
-from riser.scene import Scene
+from riser.physics.hang_off_motion import axis_displacement
+from riser.model.scene import Scene
 from verification.comparison.harmonics import fit
 
 from .run import (SETTLE_TIME, SPEED_TOL, STEP_FRACTION, _profile, _to_log, close,

@@ -32,7 +32,7 @@ How MoorDyn is run (MoorDyn-C 2.7, measured in issue 17):
   or turning with depth) runs the same way: the deck holds the 3D points and current
   (:mod:`riser.io.moordyn.deck_from_scene`) and MoorDyn solves in 3D. Its profile then
   carries ``lateral``, ``moment_in_plane`` and ``moment_out_of_plane``
-  (:func:`riser.frame.plane_columns`): MoorDyn gives no moment vector, so the node's is
+  (:func:`riser.model.frame.plane_columns`): MoorDyn gives no moment vector, so the node's is
   rebuilt as its Line.cpp bends the node, EI x GetLineNodeCurv about the axis q_{i-1} x
   q_i of its two segments' directions (0 at the ends and joints, where the curvature
   is), with the node's tangent along q_{i-1} + q_i; the shear is |dM/ds| of that vector.
@@ -53,11 +53,11 @@ from pathlib import Path
 import numpy as np
 
 from riser.errors import SceneError
-from riser.frame import LinePlane, plane_columns
-from riser.profile import Profile
-from riser.result import Status
-from riser.scene import Scene
-from vfife.dynamic_outputs import touchdown_s
+from riser.model.frame import LinePlane, plane_columns
+from riser.results.profile import Profile
+from riser.results.result import Status
+from riser.model.scene import Scene
+from vfife.dynamics.outputs import touchdown_s
 
 from .deck import DeckFiles, export
 
@@ -269,7 +269,7 @@ def _residual(moordyn, lines, scene: Scene, files: DeckFiles) -> float:
 
 def _load(scene: Scene, seg: int) -> float:
     """The load per metre [N/m] a node's residual is measured against (:func:`_residual`)."""
-    from riser.sections import segment_properties
+    from riser.model.sections import segment_properties
     p = segment_properties(scene)[seg]
     u = 0.0 if scene.current is None else scene.current.max_abs_speed
     return max(abs(p.weight), p.drag_normal_coef * u * u)

@@ -17,12 +17,12 @@ How it runs:
   hang-off held, in the still-water deck; its state is then saved and loaded into the
   same deck with its waves (MoorDyn's SaveState/LoadState, measured to restore the nodes
   exactly), whose clock starts at 0.
-- **The hang-off**: :func:`riser.hang_off_motion.hang_off_displacement` of the scene (the
+- **The hang-off**: :func:`riser.physics.hang_off_motion.hang_off_displacement` of the scene (the
   vessel's RAO motion in the same components, with the waves' ramp, or the top motion),
   given at every step as position and the step's mean velocity (as
   :mod:`.harmonic`); held without either.
 - **The same sea, checked**: MoorDyn's own elevation at the waves' origin (GetWavesKin,
-  which reports the sea without the ramp) against :func:`riser.waves.elevation` of the
+  which reports the sea without the ramp) against :func:`riser.physics.waves.elevation` of the
   scene's components without ramp, at every sample: ``sea_elevation_difference`` [m].
 
 Axes: MoorDyn (X, Y, Z) = (x, -z, y - WtrDpth); positions come back in the scene's axes.
@@ -38,7 +38,7 @@ from pathlib import Path
 import numpy as np
 
 from riser.errors import SceneError
-from riser.scene import Scene
+from riser.model.scene import Scene
 
 from .run import (SETTLE_TIME, SPEED_TOL, STEP_FRACTION, _profile, _to_log, close,
                   coupled_statics, require, start)
@@ -118,8 +118,8 @@ def run_waves(scene: Scene, folder, *, segment_length: float = 10.0, profile=Non
     import cmoordyn
     import moordyn
 
-    from riser.hang_off_motion import HangOffPath, scene_components
-    from riser.waves import elevation
+    from riser.physics.hang_off_motion import HangOffPath, scene_components
+    from riser.physics.waves import elevation
 
     say = log or (lambda msg: None)
     folder = Path(folder)

@@ -31,9 +31,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from riser.scene import Dynamics, FixedEnds, Scene, TopMotion
+from riser.model.scene import Dynamics, FixedEnds, Scene, TopMotion
 from verification.methods import method
-from vfife.dynamics import DynamicsOutcome, run_dynamics
+from vfife.dynamics.run import DynamicsOutcome, run_dynamics
 from vfife.mesh import build_mesh
 from vfife.timestep import critical_steps
 

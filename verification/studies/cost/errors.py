@@ -14,7 +14,7 @@ import dataclasses
 import numpy as np
 from scipy.interpolate import CubicSpline
 
-from riser.profile import Profile
+from riser.results.profile import Profile
 from verification.quantities import curve_distance
 
 QUANTITIES = ("hang_off_tension", "tdp_tension", "tdp_x", "max_moment", "crest_height",

@@ -9,8 +9,8 @@ from dataclasses import dataclass, field
 
 import pandas as pd
 
-from riser.profile import Profile
-from riser.scene import Scene
+from riser.results.profile import Profile
+from riser.model.scene import Scene
 
 from .errors import QUANTITIES
 from .settings import Setting

@@ -7,14 +7,14 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
-from riser.profile import summarize
-from riser.scene import Dynamics, Scene, TopMotion
+from riser.results.profile import summarize
+from riser.model.scene import Dynamics, Scene, TopMotion
 from verification.catalog import resolve
 from verification.methods import method
 from verification.pipeline import vfife_equivalent
 from verification.quantities import raw_values, reference_depth
 from verification.runtime.progress import RunCounter
-from vfife.dynamics import DynamicsOutcome, run_dynamics
+from vfife.dynamics.run import DynamicsOutcome, run_dynamics
 from vfife.solver import compile_seconds
 
 from . import dynamics as dyn

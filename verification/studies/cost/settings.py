@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from riser.scene import Scene
+from riser.model.scene import Scene
 
 from .dynamics import FAST_DYNAMICS, FULL_DYNAMICS
 

@@ -9,8 +9,8 @@ import math
 
 import numpy as np
 
-from riser.profile import Profile
-from riser.scene import Scene
+from riser.results.profile import Profile
+from riser.model.scene import Scene
 from vfife.mesh import build_mesh
 
 

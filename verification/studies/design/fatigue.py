@@ -1,7 +1,7 @@
 """Fatigue by two methods over a scatter diagram (``riser-verify reproduce design``, unit
 ``fatigue``; ``riser-verify fatigue SCENE``): for each sea state of the scene's
 ``[[design.fatigue.sea_states]]`` the irregular-sea comparison of
-:mod:`verification.comparison.sea_dynamics` (the frequency domain about the BVP static
+:mod:`verification.comparison.sea.protocol` (the frequency domain about the BVP static
 state, the VFIFE's time domain over one repeat period of the same realisation), and the
 fatigue damage along the line by four estimates:
 
@@ -36,8 +36,8 @@ from riser.design.rainflow_damage import series_damage
 from riser.design.sn_curves import sn_curve
 from riser.design.wall import wall_at
 from riser.errors import SceneError, UnsupportedSceneError
-from riser.hang_off_motion import scene_components
-from verification.comparison.sea_dynamics import compare_sea
+from riser.physics.hang_off_motion import scene_components
+from verification.comparison.sea.protocol import compare_sea
 
 #: the four estimates, in the order of the reports
 ESTIMATES = ("rainflow_vfife", "rainflow_fd", "dirlik_fd", "narrow_band_fd")

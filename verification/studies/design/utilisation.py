@@ -20,7 +20,7 @@ from pathlib import Path
 import pandas as pd
 
 from verification.catalog import resolve
-from verification.comparison.protocol import compare
+from verification.comparison.static.protocol import compare
 from verification.report.figures import new_figure, save
 from verification.report.markdown import GENERATED_NOTE, md_table, timed
 

@@ -25,7 +25,7 @@ from scipy.interpolate import CubicSpline
 from scipy.optimize import fsolve
 from scipy.special import jn_zeros
 
-from riser.sections import segment_properties
+from riser.model.sections import segment_properties
 from verification.methods import method
 
 from . import scenes as S

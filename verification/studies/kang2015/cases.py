@@ -27,9 +27,9 @@ from scipy.interpolate import CubicSpline
 from scipy.optimize import minimize_scalar
 
 from riser.errors import SolveFailed
-from riser.profile import Profile, _parabolic_peak
-from riser.scene import Scene
-from riser.settings import AnalyticSettings
+from riser.results.profile import Profile, _parabolic_peak
+from riser.model.scene import Scene
+from riser.model.settings import AnalyticSettings
 from verification.catalog import resolve
 from verification.methods import method
 from verification.pipeline import shifted, vfife_equivalent

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 from scipy.interpolate import CubicSpline
 
-from riser.sections import segment_properties
+from riser.model.sections import segment_properties
 from verification.quantities import signed_moment
 from verification.report.figures import new_figure, save
 from verification.report.markdown import GENERATED_NOTE, md_table, pct, timed

@@ -17,8 +17,8 @@ from fractions import Fraction
 import numpy as np
 import pandas as pd
 
-from riser.internal_flow import contents_mass_per_length
-from riser.sections import segment_properties
+from riser.physics.internal_flow import contents_mass_per_length
+from riser.model.sections import segment_properties
 
 
 def common_period(periods, max_denominator: int = 1000) -> float:
@@ -137,7 +137,7 @@ class Run:
     """What the study keeps of one VFIFE run (SI units).
 
     label : the case; slug_length : L_s [m] (None: uniform flow); profile : the static
-    :class:`~riser.profile.Profile`; t : (k,) output times [s]; top_tension : (k,) hang-off
+    :class:`~riser.results.profile.Profile`; t : (k,) output times [s]; top_tension : (k,) hang-off
     effective tension [N]; moment : (k, n) nodal bending moment magnitudes [N m] on the
     nodes ``profile.s``; wall, dyn_wall : wall time of the whole solve and of its dynamics
     [s]; realtime : simulated over dynamic wall time; warnings : the result's warnings.

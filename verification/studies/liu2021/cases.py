@@ -37,7 +37,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from riser.scene import Scene
+from riser.model.scene import Scene
 from verification.catalog import resolve
 from verification.pipeline import solve_scene
 from verification.report.figures import new_figure, save

@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from riser.result import Status
+from riser.results.result import Status
 from verification.catalog import resolve
 from verification.methods import method
 from verification.report.figures import new_figure, save

@@ -5,9 +5,9 @@ RAOs move its top) and in an irregular JONSWAP sea.
 
 Each scene is compared as ``riser-verify compare SCENE --dynamics`` compares it (without
 its static section): the regular waves by the first harmonics along the line
-(:mod:`verification.comparison.dynamics`, its rows and tolerances), the sea by the
+(:mod:`verification.comparison.dynamic.protocol`, its rows and tolerances), the sea by the
 standard deviations over one repeat period of the sea
-(:mod:`verification.comparison.sea_dynamics`). Files in
+(:mod:`verification.comparison.sea.protocol`). Files in
 ``reports/sea_states/two-methods/``: ``agreement.csv`` (scene, quantity, fd, vfife,
 rel_diff, tolerance, pass), ``cases.csv`` (per scene: the drive, the verdict, the row
 nearest its tolerance, the wall times), ``report.md``, and per scene the comparison's own
@@ -23,9 +23,10 @@ import pandas as pd
 
 from riser.errors import SceneError, SolveFailed, UnsupportedSceneError
 from verification.catalog import resolve
-from verification.comparison import dynamics_report, sea_report
-from verification.comparison.dynamics import compare_dynamics
-from verification.comparison.sea_dynamics import compare_sea
+from verification.comparison.dynamic import report as dynamics_report
+from verification.comparison.sea import report as sea_report
+from verification.comparison.dynamic.protocol import compare_dynamics
+from verification.comparison.sea.protocol import compare_sea
 from verification.report.markdown import md_table, pct, timed
 
 #: scene -> what drives it

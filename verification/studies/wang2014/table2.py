@@ -24,7 +24,7 @@ import pandas as pd
 from scipy.optimize import brentq
 
 from riser.errors import SolveFailed
-from riser.scene import HangOffAngleEnds, Scene
+from riser.model.scene import HangOffAngleEnds, Scene
 from verification.catalog import resolve
 from verification.methods import method
 from verification.pipeline import vfife_equivalent

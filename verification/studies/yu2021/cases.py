@@ -33,9 +33,9 @@ import pandas as pd
 from scipy.optimize import brentq
 
 from riser.errors import SolveFailed
-from riser.profile import _parabolic_peak
-from riser.result import Status
-from riser.scene import Current, FixedEnds, Scene
+from riser.results.profile import _parabolic_peak
+from riser.results.result import Status
+from riser.model.scene import Current, FixedEnds, Scene
 from verification.catalog import resolve
 from verification.pipeline import solve_scene
 from verification.report.figures import new_figure, save

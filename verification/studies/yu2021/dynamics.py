@@ -40,9 +40,9 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from riser.profile import _parabolic_peak
-from riser.scene import Dynamics, Scene, TopMotion
-from riser.sections import segment_properties
+from riser.results.profile import _parabolic_peak
+from riser.model.scene import Dynamics, Scene, TopMotion
+from riser.model.sections import segment_properties
 from verification.pipeline import solve_scene
 from verification.report.figures import new_figure, save
 from verification.report.markdown import md_table, pct, timed

@@ -1,0 +1,1 @@
+"""The 3D rod: the planar beam out of its plane (equations, problem, output)."""

@@ -1,0 +1,1 @@
+"""The static comparison: both methods on one scene, the agreement rows, the report and further columns."""

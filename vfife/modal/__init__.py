@@ -1,0 +1,1 @@
+"""The VFIFE's linearisation about its static state (tangent stiffness and mass) and its natural modes."""
