@@ -32,7 +32,6 @@ import time
 import numpy as np
 
 from riser.results import validity
-from riser.design import checks as design_checks
 from riser.errors import UnsupportedSceneError
 from riser.model.frame import LinePlane
 from riser.physics.internal_flow import wall_tension
@@ -137,25 +136,28 @@ def _outer(scene: Scene, line: Line, model: str):
                        scene.seabed is not None, with_layer)
 
 
-def _to_scene(scene: Scene, profile) -> None:
+def _to_scene(scene: Scene, profile):
     """A profile solved in the plane of fixed ends (x along it from the anchor's x) put
     into the scene's axes: x, z rotated by the plane's heading; a 3D scene's profile gets
     its 3D columns (on its plane: no lateral offset, no out-of-plane moment, the in-plane
     moment the signed planar one)."""
     e = scene.ends
     if not isinstance(e, FixedEnds):
-        return
+        return profile
     plane = LinePlane.of(scene)
     if plane.heading_deg == 0.0:                  # the x-y plane (shifted by z): x as solved
-        profile.z = np.full_like(profile.s, e.anchor_point[2])
+        profile = profile.replace(z=np.full_like(profile.s, e.anchor_point[2]))
     else:
         xi = profile.x - e.anchor_point[0]
-        profile.x, profile.z = plane.from_plane(xi, np.zeros_like(xi))
+        x, z = plane.from_plane(xi, np.zeros_like(xi))
+        profile = profile.replace(x=x, z=z)
     if not scene.statics_planar:
         kappa = np.gradient(np.unwrap(profile.theta), profile.s)
-        profile.lateral = np.zeros_like(profile.s)
-        profile.moment_in_plane = np.where(kappa < 0.0, -profile.moment, profile.moment)
-        profile.moment_out_of_plane = np.zeros_like(profile.s)
+        profile = profile.replace(
+            lateral=np.zeros_like(profile.s),
+            moment_in_plane=np.where(kappa < 0.0, -profile.moment, profile.moment),
+            moment_out_of_plane=np.zeros_like(profile.s))
+    return profile
 
 
 def solve(scene: Scene) -> SolveResult:
@@ -219,7 +221,7 @@ def _solve(scene: Scene) -> SolveResult:
     solved_first = isinstance(scene.ends, (HangOffAngleEnds, TopTensionEnds))
     total = outer.suspended if solved_first else line.length
     profile, extra = build(outer, line, model, total, threshold=threshold)
-    _to_scene(scene, profile)
+    profile = _to_scene(scene, profile)
     info.update(extra)
     if model == "piecewise" and extra["piecewise_s_E"] >= total:
         warnings.append(f"piecewise_threshold: curvature_threshold {threshold:g} 1/m is below "
@@ -231,9 +233,8 @@ def _solve(scene: Scene) -> SolveResult:
                  "suspended_length": outer.suspended,
                  "epsilon": lam / outer.suspended, "delta": line.w * lam / H})
     if scene.internal_flow is not None:
-        profile.wall_tension = wall_tension(scene, profile.s, profile.y, profile.tension)
-    if scene.design is not None:
-        design_checks.apply(scene, profile)           # stresses, utilisation (riser/design)
+        profile = profile.replace(wall_tension=wall_tension(scene, profile.s, profile.y,
+                                                            profile.tension))
     bad = validity.nonfinite(profile)
     if bad:
         return result(Status.DIVERGED, bad)

@@ -45,7 +45,6 @@ import time
 import numpy as np
 
 from riser.results import validity
-from riser.design import checks as design_checks
 from riser.physics.internal_flow import wall_tension
 from riser.results.result import SolveResult, Status
 from riser.model.scene import FixedEnds, HangOffAngleEnds, Scene, TopTensionEnds
@@ -198,13 +197,12 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
         profile, checks = (build_rod_profile if rod else build_profile)(prob, sol,
                                                                          scene.water_depth)
         if not rod and isinstance(scene.ends, FixedEnds):
-            profile.z = np.full_like(profile.s, scene.ends.anchor_point[2])   # its plane
+            profile = profile.replace(z=np.full_like(profile.s, scene.ends.anchor_point[2]))
         if scene.internal_flow is not None:
             # steady flow: no term in the shape equations (T is Fylling's effective
             # tension), one in the wall tension (riser/physics/internal_flow.py)
-            profile.wall_tension = wall_tension(scene, profile.s, profile.y, profile.tension)
-        if scene.design is not None:
-            design_checks.apply(scene, profile)       # stresses, utilisation (riser/design)
+            profile = profile.replace(wall_tension=wall_tension(scene, profile.s, profile.y,
+                                                                profile.tension))
     except BVPFailure as exc:
         return result(Status.NOT_CONVERGED, str(exc))
     info.update(checks)

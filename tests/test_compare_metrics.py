@@ -41,7 +41,7 @@ def test_agreement_identical_profiles_pass_and_shift():
     # conversion) has zero differences and passes every row
     p = arc(100.0, 800)
     q = arc(100.0, 800)
-    q.s = q.s + 50.0
+    q = q.replace(s=q.s + 50.0)
     rows = agreement(p, q, depth=100.0, s_shift=50.0)
     assert all(r["pass"] for r in rows), rows
     by = {r["quantity"]: r for r in rows}
@@ -53,12 +53,12 @@ def test_agreement_detects_tension_offset():
     # negative control of the metric itself: +1 % tension everywhere must fail the 0.1 %
     # rule; rel_diff is signed (VFIFE - BVP) / T_max: +1 % of the top tension = T_max
     p, q = arc(100.0, 800), arc(100.0, 800)
-    q.tension = q.tension * 1.01
+    q = q.replace(tension=q.tension * 1.01)
     by = {r["quantity"]: r for r in agreement(p, q, depth=100.0)}
     assert not by["tension"]["pass"]
     assert by["tension"]["rel_diff"] == pytest.approx(0.01, rel=1e-6)
     # and the sign follows VFIFE - BVP
-    q.tension = p.tension * 0.99
+    q = q.replace(tension=p.tension * 0.99)
     by = {r["quantity"]: r for r in agreement(p, q, depth=100.0)}
     assert by["tension"]["rel_diff"] == pytest.approx(-0.01, rel=1e-6)
     assert by["tension"]["diff"] < 0.0 and by["tension"]["abs_diff"] > 0.0
@@ -79,8 +79,8 @@ def test_rel_diff_has_the_basis_of_the_tolerance():
     # the moment rows to M_max, heights to the depth, touchdown tension to T_max
     p = _line()
     q = _line(dx=0.3)                       # whole line 0.3 m further along x
-    q.tension = p.tension + 9.0             # +9 N everywhere
-    q.moment = p.moment - 0.015             # -0.015 N m everywhere (M_max = 15 N m)
+    q = q.replace(tension=p.tension + 9.0)  # +9 N everywhere
+    q = q.replace(moment=p.moment - 0.015)  # -0.015 N m everywhere (M_max = 15 N m)
     by = {r["quantity"]: r for r in agreement(p, q, depth=60.0)}
     assert by["hang_off_tension"]["rel_diff"] == pytest.approx(9.0 / 1800.0, rel=1e-9)
     assert by["tension"]["rel_diff"] == pytest.approx(9.0 / 2000.0, rel=1e-9)
@@ -152,7 +152,7 @@ def test_verdict_ignores_the_paper_model_rows_and_report_reads():
     from verification.comparison.static.report import report_markdown
     p = _line()
     q = _line()
-    q.tension = p.tension * (1.0 + 1e-14)       # round-off, not a difference
+    q = q.replace(tension=p.tension * (1.0 + 1e-14))   # round-off, not a difference
     rows = agreement(p, q, depth=60.0)
     assert all(r["pass"] for r in rows)
     far = agreement(p, _line(dx=30.0), depth=60.0)    # 30 m apart: fails
@@ -296,13 +296,13 @@ def test_a_moment_the_elements_cannot_resolve_is_shown_not_judged():
             "bending_stiffness": EI}}, "segments": [{"line_type": "c", "length": 200.0}],
             "ends": {"anchor": [0.0, 10.0], "hang_off": [199.0, 10.0]}}, "t")
     p = _line()
-    p.tension = 1.0e5 + 0 * p.s
+    p = p.replace(tension=1.0e5 + 0 * p.s)
     reason = unresolved_bending(line(10.0), p, 1.0)
     assert reason is not None and "0.01 m" in reason and "1 m element" in reason
     assert unresolved_bending(line(1e8), p, 1.0) is None
     q = _line()
-    q.moment = q.moment * 3.0                       # a moment far outside its tolerance
-    q.tension = p.tension
+    q = q.replace(moment=q.moment * 3.0)            # a moment far outside its tolerance
+    q = q.replace(tension=p.tension)
     rows = agreement(p, q, 60.0, moment_reason=reason)
     for r in rows:
         if r["quantity"] in MOMENT_ROWS:

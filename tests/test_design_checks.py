@@ -205,12 +205,12 @@ def test_wall_tension_and_pressures_along_the_line():
 def test_static_design_both_methods_agree():
     # the two methods' largest utilisation: the same post-processing of tensions and
     # moments that agree to 0.1 % of T_max and 0.5 % of M_max at 2 m elements; measured
-    # 0.116664 (BVP) and 0.116673 (VFIFE): 1e-4 relative
-    import bvp
-    import vfife
+    # 0.116664 (BVP) and 0.116673 (VFIFE): 1e-4 relative. Through the method registry,
+    # which runs the design checks after each method's solve
+    from verification.methods import method
     sc = parse_scene(SCENE)
-    b = bvp.solve(sc).require().summary()
-    v = vfife.solve(sc, element_length=2.0).require().summary()
+    b = method("bvp").solve(sc).require().summary()
+    v = method("vfife").solve(sc, element_length=2.0).require().summary()
     assert b["design_code"] == "dnv-st-f201" and b["design_passes"]
     assert v["max_utilisation"] == pytest.approx(b["max_utilisation"], rel=1e-3)
     assert 0.05 < b["max_utilisation"] < 0.5

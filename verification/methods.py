@@ -8,11 +8,16 @@ called (loading a solver costs ~1.5 s: ``riser-verify scenes`` or a refusal of b
 loads none):
 
 - ``solve(scene, **overrides) -> riser.results.result.SolveResult``: statics, and the time domain
-  when the scene has ``[dynamics]`` and the method has ``time_domain``;
+  when the scene has ``[dynamics]`` and the method has ``time_domain`` (its solve then takes
+  ``observers=``, told of every sample of its recorder);
 - ``modes(scene, count, *, static=None, progress=None) -> riser.results.modes.ModalResult``;
 - the frequency domain about the static state (the BVP): ``harmonic`` (one period, a
   top motion or a wave), ``transfer`` (a sweep of periods along one axis of motion), ``sea``
   (an irregular sea's spectral response) and their ``require_*`` refusals.
+
+The design checks (``riser.design``) are post-processing of a result, run here once after
+the solve (:func:`after_design`): the static profile's columns, and a time domain's samples
+through an observer of its recorder. No method imports them.
 
 Adding a method (ARCHITECTURE.md, "Adding a method"): its folder, its wrappers and one
 :class:`Method` line here, its column in the comparisons. ``tests/test_layers.py`` holds
@@ -24,6 +29,7 @@ its internals, which the studies and benches about that method may read.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 from typing import Callable
 
@@ -34,7 +40,9 @@ class Method:
 
     name : ``SolveResult.method``, ``--method NAME``, the method's column in a comparison.
     summary : one line on what it is.
-    solve : ``solve(scene, **overrides)``, a :class:`riser.results.result.SolveResult`.
+    solve : ``solve(scene, **overrides)``, a :class:`riser.results.result.SolveResult` with
+        the design checks of a scene with [design] (the method's own solve wrapped by
+        :func:`after_design`).
     overrides : the settings a caller may override per solve (``tolerance``: the BVP's
         solve_bvp tolerance; ``element_length`` [m]: the VFIFE's).
     fixed_ends_only : it solves fixed-ends scenes only; a scene in a touchdown form is
@@ -59,6 +67,25 @@ class Method:
     sea: Callable | None = None
     require_harmonic: Callable | None = None
     require_wave: Callable | None = None
+
+
+def after_design(solve: Callable, observes: bool = False) -> Callable:
+    """``solve`` followed by the design checks of its result, once: a static profile's
+    columns (:func:`riser.design.checks.with_design`) and, with ``observes`` (a time
+    domain whose solve takes ``observers=``), the dynamic run's samples through
+    :class:`riser.design.dynamic.DynamicDesign` watching its recorder. A scene without
+    [design] runs ``solve`` alone."""
+    @functools.wraps(solve)
+    def solve_then_check(scene, **overrides):
+        if scene.design is None:
+            return solve(scene, **overrides)
+        from riser.design.checks import with_design
+        if observes and scene.dynamics is not None:
+            from riser.design.dynamic import DynamicDesign
+            overrides = {**overrides,
+                         "observers": (*overrides.get("observers", ()), DynamicDesign(scene))}
+        return with_design(scene, solve(scene, **overrides))
+    return solve_then_check
 
 
 # --------------------------------------------------------------------------------- the BVP
@@ -116,15 +143,15 @@ def _analytic_solve(scene, **overrides):
 
 #: the methods, by name (iterating gives the names, in the comparisons' column order)
 METHODS: dict[str, Method] = {m.name: m for m in (
-    Method("bvp", "large-deformation beam equations, scipy solve_bvp", _bvp_solve,
+    Method("bvp", "large-deformation beam equations, scipy solve_bvp", after_design(_bvp_solve),
            overrides=("tolerance",), modes=_bvp_modes, harmonic=_bvp_harmonic,
            transfer=_bvp_transfer, sea=_bvp_sea, require_harmonic=_bvp_require_harmonic,
            require_wave=_bvp_require_wave),
     Method("vfife", "vector form intrinsic finite elements, dynamic relaxation and dynamics",
-           _vfife_solve, overrides=("element_length",), fixed_ends_only=True,
-           progress=True, time_domain=True, modes=_vfife_modes),
+           after_design(_vfife_solve, observes=True), overrides=("element_length",),
+           fixed_ends_only=True, progress=True, time_domain=True, modes=_vfife_modes),
     Method("analytic", "extensible catenary with matched boundary layers, closed form",
-           _analytic_solve),
+           after_design(_analytic_solve)),
 )}
 
 

@@ -9,7 +9,6 @@ import time
 import numpy as np
 
 from riser.results import validity
-from riser.design import checks as design_checks
 from riser.errors import UnsupportedSceneError
 from riser.model.frame import LinePlane, elevation, plane_columns
 from riser.physics.internal_flow import wall_tension
@@ -193,13 +192,12 @@ def make_profile(model: Model, scene: Scene) -> Profile:
                       tdp_s=touchdown_s(model.mesh.s, X[:, 1], scene.seabed is not None),
                       wall_tension=wall, lateral=lateral, moment_in_plane=inplane,
                       moment_out_of_plane=oop)
-    if scene.design is not None:
-        design_checks.apply(scene, profile)           # stresses, utilisation (riser/design)
     return profile
 
 
 def solve(scene: Scene, *, element_length: float | None = None, tolerance: float | None = None,
-          progress=None, dead_load=None, checkpoint_at: float | None = None) -> SolveResult:
+          progress=None, dead_load=None, checkpoint_at: float | None = None,
+          observers=()) -> SolveResult:
     """Solve a fixed-ends scene (statics, then dynamics if the scene has [dynamics]).
 
     element_length [m]: default ``[vfife] element_length`` (1 m); tolerance: largest nodal
@@ -309,7 +307,8 @@ def solve(scene: Scene, *, element_length: float | None = None, tolerance: float
                f"estimated creep {sinfo['creep_m']:.2g} m, after {sinfo['steps']} steps")
     if scene.dynamics is None:
         return result(Status.CONVERGED, message, profile, solver_state=model)
-    _, dinfo = run_dynamics(scene, model, planar, progress, checkpoint_at=checkpoint_at)
+    _, dinfo = run_dynamics(scene, model, planar, progress, checkpoint_at=checkpoint_at,
+                            observers=observers)
     effects = dinfo["effects"]
     info.update({"dynamic_time_step": dinfo["time_step"], "dynamic_steps": dinfo["steps"],
                  "dynamic_step_limit": dinfo["step_limit"], "dynamic_wall_s": dinfo["wall_s"],

@@ -117,9 +117,8 @@ def solve_harmonic(scene: Scene, period: float | None = None, motion=None, *,
                             "phase_deg": math.degrees(float(wave.phase[0])),
                             "line_loads": forcing is not None,
                             "vessel": scene.vessel is not None}
-    out.wall_time_s = time.perf_counter() - t0
     out.info["static_wall_time_s"] = static.wall_time_s
-    return out
+    return out.replace(wall_time_s=time.perf_counter() - t0)
 
 
 def transfer_sweep(scene: Scene, periods, axis: str, *, static: SolveResult | None = None,
@@ -135,8 +134,8 @@ def transfer_sweep(scene: Scene, periods, axis: str, *, static: SolveResult | No
         r = solve_harmonic(scene, p, motion_amplitudes(axis, amplitude), static=static,
                            check_grid=False, **kw)
         if r.converged:
-            r.amplitudes = {k: v / amplitude for k, v in r.amplitudes.items()}
-            r.motion = r.motion / amplitude
+            r = r.replace(amplitudes={k: v / amplitude for k, v in r.amplitudes.items()},
+                          motion=r.motion / amplitude)
         out.append(r)
     return out
 

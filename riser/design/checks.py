@@ -50,13 +50,21 @@ def static_columns(scene, s, y, tension, moment) -> dict:
             "stress_hoop": st.hoop, "von_mises": st.von_mises, "utilisation": u}
 
 
-def apply(scene, profile) -> None:
-    """Set the design columns of ``profile`` (a :class:`riser.results.profile.Profile` of
-    ``scene``, which has a [design]) in place."""
+def apply(scene, profile):
+    """``profile`` (a :class:`riser.results.profile.Profile` of ``scene``, which has a
+    [design]) with its design columns and ``design_code``."""
     cols = static_columns(scene, profile.s, profile.y, profile.tension, profile.moment)
-    for name, values in cols.items():
-        setattr(profile, name, values)
-    profile.design_code = scene.design.code
+    return profile.replace(**cols, design_code=scene.design.code)
+
+
+def with_design(scene, result):
+    """A method's :class:`riser.results.result.SolveResult` of ``scene`` with the design
+    checks of its static profile (``result`` itself without [design] or a profile). Run
+    once, after the solve, by the method registry (``verification/methods.py``): the
+    checks post-process every method's results alike, and no method imports them."""
+    if scene.design is None or result.profile is None:
+        return result
+    return result.replace(profile=apply(scene, result.profile))
 
 
 def amplitude_columns(scene, s, y, tension, moment, tension_amp, moment_amp) -> dict:

@@ -3,9 +3,11 @@ largest utilisation and von Mises stress along the line over the statistics wind
 the record of wall tension and moment components that fatigue counts
 (:func:`riser.design.fatigue.time_domain`).
 
-A method's recorder calls :meth:`DynamicDesign.sample` with its state (positions,
-tangents, effective tension and bending-moment vectors at its stations, SI); the first
-call is the static state, the functional load effect of the checks
+An observer of a time-domain method's recorder (the method never imports it: the method
+registry, ``verification/methods.py``, hands it over): :meth:`DynamicDesign.start` with
+the stations, then :meth:`DynamicDesign.sample` with each state (positions, tangents,
+effective tension and bending-moment vectors at the stations, SI); the first sample is
+the static state, the functional load effect of the checks
 (:mod:`riser.design.checks`). The moment vectors are resolved across the tangent into the
 in-plane and out-of-plane components of :mod:`riser.model.frame` (the line's plane through its
 ends).
@@ -23,12 +25,19 @@ from .wall import pressures, stresses, wall_at, wall_tension
 
 
 class DynamicDesign:
-    """Design checks over a dynamic run at stations ``s`` [m] of ``scene`` (which has a
-    [design]); with ``[design.fatigue]`` it keeps the window's record (wall tension [N],
-    in-plane and out-of-plane moments [N m] at every station and sample)."""
+    """Design checks over a dynamic run of ``scene`` (which has a [design]) at the
+    recorder's stations ``s`` [m] (:meth:`start`, or given here); with ``[design.fatigue]``
+    it keeps the window's record (wall tension [N], in-plane and out-of-plane moments
+    [N m] at every station and sample)."""
 
-    def __init__(self, scene, s):
+    def __init__(self, scene, s=None):
         self.scene, self.design = scene, scene.design
+        if s is not None:
+            self.start(s)
+
+    def start(self, s) -> None:
+        """The stations' arc lengths ``s`` [m], before the first sample."""
+        scene = self.scene
         self.s = np.asarray(s, float)
         self.wall = wall_at(scene, self.s)
         # the resistances that do not change with the loads: once, not every sample

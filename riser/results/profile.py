@@ -16,6 +16,7 @@ that plane) (:mod:`riser.model.frame`; the profile.csv columns of the same names
 from __future__ import annotations
 
 import csv
+import dataclasses
 import json
 import math
 from dataclasses import dataclass
@@ -29,7 +30,7 @@ OPTIONAL_COLUMNS = ("wall_tension", "lateral", "moment_in_plane", "moment_out_of
                     "stress_axial", "stress_bending", "stress_hoop", "von_mises", "utilisation")
 
 
-@dataclass
+@dataclass(frozen=True)
 class Profile:
     """Static configuration and internal forces sampled along the line (arrays of shape (n,)).
 
@@ -37,7 +38,9 @@ class Profile:
     ``wall_tension`` [N] is set for scenes with internal flow or a [design]; the design
     columns (``stress_axial``, ``stress_bending``, ``stress_hoop``, ``von_mises`` [Pa],
     ``utilisation`` [-]) and ``design_code`` for a scene with a [design] only
-    (:mod:`riser.design.checks`).
+    (:mod:`riser.design.checks`, applied after the solve: :meth:`replace`).
+
+    Frozen: a method builds it once; a changed copy is :meth:`replace`'s.
     """
 
     s: np.ndarray
@@ -63,10 +66,14 @@ class Profile:
 
     def __post_init__(self) -> None:
         for name in ("s", "x", "y", "z", "theta", "tension", "moment", "shear", "curvature"):
-            setattr(self, name, np.asarray(getattr(self, name), dtype=float))
+            object.__setattr__(self, name, np.asarray(getattr(self, name), dtype=float))
         for name in OPTIONAL_COLUMNS:
             if getattr(self, name) is not None:
-                setattr(self, name, np.asarray(getattr(self, name), dtype=float))
+                object.__setattr__(self, name, np.asarray(getattr(self, name), dtype=float))
+
+    def replace(self, **changes) -> Profile:
+        """A copy with ``changes`` (columns by name, ``tdp_s``, ``design_code``)."""
+        return dataclasses.replace(self, **changes)
 
     @property
     def is_3d(self) -> bool:

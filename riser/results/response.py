@@ -17,6 +17,7 @@ bending).
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -32,7 +33,7 @@ UNITS = {"dx": "m", "dy": "m", "dz": "m", "tension": "N", "moment": "N m",
          "moment_out": "N m", "curvature": "1/m", "shear": "N"}
 
 
-@dataclass
+@dataclass(frozen=True)
 class HarmonicResponse:
     """One harmonic response (see the module docstring).
 
@@ -41,7 +42,8 @@ class HarmonicResponse:
     hang-off motion [m] along x, y, z. ``s`` (n,) [m]; ``amplitudes`` maps each name of
     :data:`QUANTITIES` to a complex (n,) array; ``static`` holds the static tension [N]
     and in-plane moment [N m] at s. ``info``: figures of the solution (iterations of the
-    drag linearisation, grid change, wall time)."""
+    drag linearisation, grid change, wall time). Frozen: a changed copy is
+    :meth:`replace`'s."""
 
     method: str
     scene: str
@@ -58,6 +60,10 @@ class HarmonicResponse:
     @property
     def converged(self) -> bool:
         return self.status == Status.CONVERGED
+
+    def replace(self, **changes) -> HarmonicResponse:
+        """A copy with ``changes`` (fields by name)."""
+        return dataclasses.replace(self, **changes)
 
     @property
     def omega(self) -> float:

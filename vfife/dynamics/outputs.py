@@ -78,17 +78,25 @@ class Recorder:
     s : (n,) node arc lengths [m]; start : the statistics window's start [s];
     save_states : keep the node positions and velocities at the output times;
     has_seabed : the scene has a seabed (touchdown outputs).
+    observers : objects told of every sample, whose columns and figures join the run's
+        (the caller's post-processing, e.g. the design checks of riser.design.dynamic,
+        which this method never imports): ``start(s)`` once with the stations [m];
+        ``sample(t, x, tangents, tension, moment_vectors, window)`` at every sample
+        (positions (n, 3) [m], unit tangents (n, 3), effective tension (n,) [N], the
+        line's bending-moment vectors EI t x t' (n, 3) [N m], inside the statistics
+        window or not; the first call is the static state); ``envelope()`` -> columns
+        along s; ``statistics()`` -> summary figures. One fresh set per run.
     """
 
     def __init__(self, s: np.ndarray, start: float, save_states: bool, has_seabed: bool,
-                 elevation=None, irregular: bool = False, design=None):
+                 elevation=None, irregular: bool = False, observers=()):
         self.s = np.asarray(s, float)
         self.start = float(start)
         self.save_states = save_states
         self.has_seabed = has_seabed
         self.elevation = elevation
         self.irregular = irregular
-        self.design = design                      # riser.design.dynamic.DynamicDesign
+        self.observers = tuple(observers)
         self.times: list[float] = []              # the window's sample times
         n = len(self.s)
         self.columns = TIMESERIES + (("wave_elevation",) if elevation is not None else ())
@@ -107,6 +115,9 @@ class Recorder:
         self.stats: dict = {}
         self.samples = 0
         self.top_tension: list[float] = []       # the window's hang-off tension samples
+
+        for obs in self.observers:
+            obs.start(self.s)
 
     def sample(self, t: float, model, ke: float, record: bool) -> None:
         """Take the state of ``model`` at time ``t`` [s] (kinetic energy ``ke`` [J]);
@@ -135,10 +146,11 @@ class Recorder:
                 e[key + "_time"][later] = t      # the first time the extreme is reached
             np.minimum(e["submergence_min"], sub, out=e["submergence_min"])
             self._window(row, T, M, K, y)
-        if self.design is not None:
+        if self.observers:
             # the line's bending moment EI t x t' is minus the nodal moment vector
-            self.design.sample(t, model.positions(), model.directors(), T,
-                               -r["moment_vector"].T, window)
+            x, tangents, mv = model.positions(), model.directors(), -r["moment_vector"].T
+            for obs in self.observers:
+                obs.sample(t, x, tangents, T, mv, window)
         if record:
             for k in self.columns:
                 self.ts[k].append(float(row[k]))
@@ -197,8 +209,8 @@ class Recorder:
             mean = self.sums[q] / n
             out[f"{key}_mean"] = mean
             out[f"{key}_std"] = np.sqrt(np.maximum(self.sums[q + "2"] / n - mean * mean, 0.0))
-        if self.design is not None:
-            out.update(self.design.envelope())
+        for obs in self.observers:
+            out.update(obs.envelope())
         return out
 
     def states_arrays(self) -> dict | None:
@@ -228,8 +240,8 @@ class Recorder:
             st["max_tension"], st["max_tension_s"] = float(self.env["tension_max"][j]), float(
                 self.s[j])
         out.update({f"dynamic_{k}": v for k, v in st.items()})
-        if self.design is not None:
-            out.update(self.design.statistics())
+        for obs in self.observers:
+            out.update(obs.statistics())
         return out
 
 

@@ -43,7 +43,6 @@ from enum import StrEnum
 import numpy as np
 
 from riser.callbacks import with_fraction
-from riser.design.dynamic import DynamicDesign
 from riser.physics.hang_off_motion import HangOffPath, scene_components
 
 from .outputs import Recorder
@@ -111,7 +110,7 @@ def blow_up_cause(info: dict) -> str:
 
 def run_dynamics(scene, static: Model, planar: bool, progress=None, *,
                  checkpoint_at: float | None = None,
-                 resume: Checkpoint | None = None) -> tuple[Model, dict]:
+                 resume: Checkpoint | None = None, observers=()) -> tuple[Model, dict]:
     """Integrate the scene's [dynamics] from the static state ``static`` (its dead load,
     if any, carries over: :class:`vfife.model.Model`).
 
@@ -119,6 +118,8 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None, *,
     info['checkpoint'] (a :class:`Checkpoint`; None if the run ends before). ``resume``:
     continue from that checkpoint (a run of the same scene and static state) instead of
     starting at t = 0; the time series and states then start at the checkpoint's time.
+    ``observers``: told of every sample (:class:`vfife.dynamics.outputs.Recorder`); their
+    columns and figures join the envelope and the statistics.
 
     Returns (model at the end, info) where info holds 'timeseries' (dict of arrays),
     'envelope' (dict of arrays along s), 'states' (dict for npz, None unless
@@ -190,7 +191,7 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None, *,
     rec = Recorder(mesh.s, start, dyn.save_states, scene.seabed is not None,
                    elevation=elevation, irregular=bool(scene.waves is not None
                                                        and scene.waves.spectrum is not None),
-                   design=DynamicDesign(scene, mesh.s) if scene.design is not None else None)
+                   observers=observers)
     # what a blow-up message names as its likely cause
     cause = {"critical_steps": steps, "time_step": dt,
              "emerging": model.use_surface and not emerge}
