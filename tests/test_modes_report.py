@@ -61,7 +61,7 @@ def test_pairing_frequency_difference_and_mac():
     # the same sine on another grid: MAC 1 whatever the sign (linear interpolation of a
     # 2-node-per-4-m sine: 1 - MAC ~ (h k)^4 ~ 1e-6)
     assert rows[0]["mac"] == pytest.approx(1.0, abs=1e-5)
-    assert rows[0]["meets"] and not rows[1]["meets"]          # 5 % is outside 0.5 %
+    assert rows[0].passed and not rows[1].passed              # 5 % is outside 0.5 %
 
 
 @needs_bvp
@@ -99,7 +99,7 @@ def test_scr_steel_methods_agree(tmp_path):
     sc = sc.replace(vfife=sc.vfife.replace(element_length=5.0))
     run = vm.run_modes(sc, 10, out=None)
     assert len(run.rows) == 20
-    bad = [r for r in run.rows if not r["meets"]]
+    bad = [r for r in run.rows if not r.passed]
     assert not bad, bad
     assert run.all_meet and run.files == []
 

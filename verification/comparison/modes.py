@@ -36,6 +36,8 @@ from verification.report.figures import new_figure, save
 from verification.report.markdown import GENERATED_NOTE, md_table, pct, timed
 from verification.runtime import outdir
 
+from .row import Row, Tolerance, Verdict
+
 #: agreement target: largest |relative frequency difference| and smallest MAC
 TARGET_REL_DIFF = 0.005
 TARGET_MAC = 0.99
@@ -53,12 +55,14 @@ PLANE_TITLES = {"in_plane": "in-plane (x, y)", "out_of_plane": "out-of-plane (z)
 class ModesRun:
     """Outcome of :func:`run_modes`: the scene's name, the two :class:`ModalResult`
     (``results['bvp']``, ``results['vfife']``, arc lengths in the scene's coordinate), the
-    agreement ``rows`` (dicts with the agreement.csv columns and ``meets``), the
+    agreement ``rows`` (a :class:`~.row.Row` per mode pair: the frequencies [Hz] of
+    both, their relative difference, ``plane``, ``mode`` and ``mac`` beside; its verdict
+    the target's, on both the frequency and the MAC), the
     conversion ``note`` and ``s_shift`` [m], the output folder and the files written."""
 
     scene: str
     results: dict[str, ModalResult]
-    rows: list[dict]
+    rows: list[Row]
     note: str = ""
     s_shift: float = 0.0
     out: Path | None = None
@@ -69,7 +73,7 @@ class ModesRun:
     def all_meet(self) -> bool:
         """Every pair found by both methods meets the target and both converged."""
         return (all(r.converged for r in self.results.values()) and bool(self.rows)
-                and all(r["meets"] for r in self.rows))
+                and all(r.passed for r in self.rows))
 
 
 def _shifted(res: ModalResult, s_shift: float) -> ModalResult:
@@ -79,7 +83,14 @@ def _shifted(res: ModalResult, s_shift: float) -> ModalResult:
     return res
 
 
-def pair_rows(bvp_res: ModalResult, vf_res: ModalResult) -> list[dict]:
+#: the target of a mode pair, as a row's tolerance (its MAC judged with it)
+TARGET = Tolerance(TARGET_REL_DIFF, None, "the BVP's frequency",
+                   f"{100 * TARGET_REL_DIFF:g} % and MAC >= {TARGET_MAC:g}",
+                   "two discretisations of one linearised model: the static agreement's "
+                   "order (0.5 %), and shapes that are the same mode (MAC)", relative=True)
+
+
+def pair_rows(bvp_res: ModalResult, vf_res: ModalResult) -> list[Row]:
     """Agreement rows of the modes both results hold, by plane and number."""
     rows = []
     for plane in PLANES:
@@ -92,9 +103,10 @@ def pair_rows(bvp_res: ModalResult, vf_res: ModalResult) -> list[dict]:
             s = v.s[(v.s >= lo) & (v.s <= hi)]
             m = mac(shape_at(b, s), shape_at(v, s))
             rel = v.frequency_hz / b.frequency_hz - 1.0 if b.frequency_hz > 0 else float("nan")
-            rows.append({"plane": plane, "mode": b.number, "bvp_frequency_hz": b.frequency_hz,
-                         "vfife_frequency_hz": v.frequency_hz, "rel_diff": rel, "mac": m,
-                         "meets": bool(abs(rel) <= TARGET_REL_DIFF and m >= TARGET_MAC)})
+            rows.append(Row("frequency", {"bvp": b.frequency_hz, "vfife": v.frequency_hz},
+                            "Hz", v.frequency_hz - b.frequency_hz, rel, TARGET,
+                            Verdict.of(bool(abs(rel) <= TARGET_REL_DIFF and m >= TARGET_MAC)),
+                            extra={"plane": plane, "mode": b.number, "mac": m}))
     return rows
 
 
@@ -143,7 +155,8 @@ def write(run: ModesRun, out: Path) -> None:
                ((name, m.plane, m.number, m.frequency_hz, m.period_s)
                 for name, res in run.results.items() for m in res.modes))
     _write_csv(out / "agreement.csv", AGREEMENT_COLUMNS,
-               ([r[c] for c in AGREEMENT_COLUMNS] for r in run.rows))
+               ((r["plane"], r["mode"], r.value("bvp"), r.value("vfife"), r.rel_diff,
+                 r["mac"]) for r in run.rows))
     for plane in PLANES:
         plot_shapes(run, plane, out / f"mode_shapes_{plane}.png")
     (out / "report.md").write_text(markdown(run))
@@ -198,7 +211,7 @@ def _result_line(name: str, res: ModalResult) -> str:
 
 def markdown(run: ModesRun) -> str:
     """The ``report.md`` of a modal analysis."""
-    n_ok = sum(r["meets"] for r in run.rows)
+    n_ok = sum(r.passed for r in run.rows)
     lines = [f"# Natural modes: {run.scene}", "", GENERATED_NOTE, "",
              "Undamped modes of small vibration about the static state, by both methods "
              "(`riser/results/modes.py`: mass pipe + contents with the added mass normal to the axis, "
@@ -222,9 +235,9 @@ def markdown(run: ModesRun) -> str:
         lines.append(md_table(
             ("mode", "BVP f [Hz]", "VFIFE f [Hz]", "BVP T [s]", "VFIFE T [s]", "difference",
              "MAC", "meets target"),
-            [(r["mode"], r["bvp_frequency_hz"], r["vfife_frequency_hz"],
-              1.0 / r["bvp_frequency_hz"], 1.0 / r["vfife_frequency_hz"],
-              pct(r["rel_diff"]), f"{r['mac']:.5f}", r["meets"]) for r in rows]))
+            [(r["mode"], r.value("bvp"), r.value("vfife"),
+              1.0 / r.value("bvp"), 1.0 / r.value("vfife"),
+              pct(r.rel_diff), f"{r['mac']:.5f}", r.passed) for r in rows]))
         lines += ["", f"![{plane} mode shapes](mode_shapes_{plane}.png)", ""]
     lines += ["Periods are for VIV screening: a vortex-shedding frequency St U / D (St ~ 0.2) "
               "near a natural frequency flags the mode.", ""]
@@ -245,11 +258,11 @@ def summary_lines(run: ModesRun) -> list[str]:
         if rows:
             out.append(f"  {PLANE_TITLES[plane]}: mode, bvp Hz, vfife Hz, period s, diff, MAC")
         for r in rows:
-            out.append(f"    {r['mode']:2d}  {r['bvp_frequency_hz']:.6g}  "
-                       f"{r['vfife_frequency_hz']:.6g}  {1.0 / r['bvp_frequency_hz']:.4g}  "
-                       f"{100 * r['rel_diff']:+.3f} %  {r['mac']:.4f}"
-                       + ("" if r["meets"] else "  (outside the target)"))
-    n_ok = sum(r["meets"] for r in run.rows)
+            out.append(f"    {r['mode']:2d}  {r.value('bvp'):.6g}  "
+                       f"{r.value('vfife'):.6g}  {1.0 / r.value('bvp'):.4g}  "
+                       f"{100 * r.rel_diff:+.3f} %  {r['mac']:.4f}"
+                       + ("" if r.passed else "  (outside the target)"))
+    n_ok = sum(r.passed for r in run.rows)
     out.append(f"  {n_ok}/{len(run.rows)} pairs within {100 * TARGET_REL_DIFF:g} % and MAC >= "
                f"{TARGET_MAC:g}")
     if run.out is not None and run.files:

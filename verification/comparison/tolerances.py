@@ -7,7 +7,8 @@ column's in :data:`verification.peers.moordyn.column.TOLERANCES`.
 Both methods solve the same continuum model (extensible line on a unilateral Winkler
 seabed of the scene's stiffness; see :mod:`verification.comparison.static.protocol`), so a tolerance only
 has to cover the discretisation of each method, not a model difference. Each entry is
-(kind, value):
+(kind, value, reason: the comment above it in one line, carried by each row's
+:class:`~verification.comparison.row.Tolerance`):
 
 - ``of_depth``: a fraction of the water depth (the hang-off height when the scene gives
   no depth);
@@ -58,69 +59,100 @@ TOLERANCES = {
     # Configuration: largest point-to-curve distance between the two lines. The target,
     # 0.02 % of depth. Measured worst 0.0135 % (Yu A1, 0.068 m of 500 m; 0.0022 % at
     # 0.5 m elements), Wang forms 0.0009-0.0016 %. A 5 % buoyancy change: 56x this.
-    "configuration": ("of_depth", 2.0e-4),
+    "configuration": ("of_depth", 2.0e-4,
+                      "the target; measured worst 0.0135 % (Yu A1), a 5 % buoyancy change "
+                      "56x this"),
     # rms of the same distance over the compared range: half the target. Measured worst
     # 0.0068 % (Yu A1).
-    "configuration_rms": ("of_depth", 1.0e-4),
+    "configuration_rms": ("of_depth", 1.0e-4,
+                          "half the target; measured worst 0.0068 % (Yu A1)"),
     # Effective tension at the VFIFE nodes. The target, 0.1 % of T_max. Measured worst
     # 0.018 % (Yu A1); 0.004 % on the Wang baseline.
-    "tension": ("of_T_max", 1.0e-3),
+    "tension": ("of_T_max", 1.0e-3,
+                "the target; measured worst 0.018 % (Yu A1)"),
     # Signed in-plane bending moment at the VFIFE nodes. The target, 0.5 % of M_max.
     # Measured worst 0.45 % (hard-slack-touchdown, at the lift-off), 0.43 % hard-many-buoys,
     # 0.37 % Wang baseline: the first-order moment error of 1 m elements at the lift-off;
     # the margin is thin (a scene that needs more gets a shorter [vfife] element_length,
     # never a looser tolerance).
-    "moment": ("of_M_max", 5.0e-3),
+    "moment": ("of_M_max", 5.0e-3,
+               "the target; measured worst 0.45 % (hard-slack-touchdown, the first-order "
+               "moment error of 1 m elements at the lift-off)"),
     # Scalars. Hang-off tension, relative to itself: measured worst 2.8e-5 (Yu A2
     # sheared); x3.5 -> 1e-4.
-    "hang_off_tension": ("rel", 1.0e-4),
+    "hang_off_tension": ("rel", 1.0e-4,
+                         "measured worst 2.8e-5 (Yu A2 sheared) x 3.5"),
     # with [internal_flow]: the wall tension is the effective tension plus terms both
     # methods evaluate alike (mu U^2, pressures at the hang-off height): the hang-off
     # tension's tolerance (measured 4.9e-5 on liu2021-scr with steady flow at 4 m elements)
-    "hang_off_wall_tension": ("rel", 1.0e-4),
+    "hang_off_wall_tension": ("rel", 1.0e-4,
+                              "the hang-off tension's (both add the same terms); measured "
+                              "4.9e-5 (liu2021-scr, steady flow)"),
     # with [design]: the largest code-check utilisation, the same post-processing of each
     # method's tension and moment (riser/design). It is at most linear in the moment
     # (DNV: gamma M_d / M_k plus terms in T^2 and the pressures; API: the bending stress
     # in von Mises), so max_moment's 0.2 % carries over, relative to itself. Measured
     # (compare at the default mesh) 1.4e-5 on scr-steel-design, 6.8e-5 on
     # wang2014-lazy-wave-design.
-    "max_utilisation": ("rel", 2.0e-3),
+    "max_utilisation": ("rel", 2.0e-3,
+                        "max_moment's, carried over (at most linear in the moment); "
+                        "measured 6.8e-5"),
     # ---- end conditions (issue 35): outputs of a held or free end. The moment at a
     # clamped or flex-jointed end is a point of the moment profile: its target. The
     # height of a tensioned top and the position of a free end are points of the
     # configuration: the crests' target. Measured: see docs/end-conditions.md.
-    "anchor_moment": ("of_M_max", 5.0e-3),
-    "hang_off_moment": ("of_M_max", 5.0e-3),
-    "hang_off_height": ("of_depth", 2.0e-4),
-    "anchor_x": ("of_depth", 2.0e-4),
-    "anchor_height": ("of_depth", 2.0e-4),
+    "anchor_moment": ("of_M_max", 5.0e-3,
+                      "a point of the moment profile: its target"),
+    "hang_off_moment": ("of_M_max", 5.0e-3,
+                        "a point of the moment profile: its target"),
+    "hang_off_height": ("of_depth", 2.0e-4,
+                        "a point of the configuration: the crests' target"),
+    "anchor_x": ("of_depth", 2.0e-4,
+                 "a point of the configuration: the crests' target"),
+    "anchor_height": ("of_depth", 2.0e-4,
+                      "a point of the configuration: the crests' target"),
     # deg: measured worst 0.016 deg (Yu A1; 0.0008 deg at 0.5 m), 0.008 deg Yu A3, Wang
     # forms <= 0.0016 deg; x1.9 -> 0.03 deg (half the drag: 66x this).
-    "hang_off_angle_deg": ("abs", 0.03),
+    "hang_off_angle_deg": ("abs", 0.03,
+                           "measured worst 0.016 deg (Yu A1) x 1.9; half the drag is 66x "
+                           "this"),
     # m: measured worst 0.109 m (hard-slack-touchdown), 0.095 m hard-many-buoys, 0.025 m
     # Wang baseline (lift-off interpolated between 1 m nodes); x2.3 -> 0.25 m, inside the
     # 0.5 m target.
-    "tdp_x": ("abs", 0.25),
+    "tdp_x": ("abs", 0.25,
+              "measured worst 0.109 m (hard-slack-touchdown) x 2.3, inside the 0.5 m target"),
     # touchdown (lift-off) tension: measured worst 8.1e-5 of T_max (hard-many-buoys);
     # x2.5 -> 2e-4 of T_max.
-    "tdp_tension": ("of_T_max", 2.0e-4),
+    "tdp_tension": ("of_T_max", 2.0e-4,
+                    "measured worst 8.1e-5 of T_max (hard-many-buoys) x 2.5"),
     # heights of crests and sag bends: points of the configuration, its target. Measured
     # worst 9.6e-5 of depth (Yu A1 crest), sags 7.6e-5 (Yu A3): margin x2.1.
-    "crest_height": ("of_depth", 2.0e-4),
-    "sag_height": ("of_depth", 2.0e-4),
+    "crest_height": ("of_depth", 2.0e-4,
+                     "a point of the configuration; measured worst 9.6e-5 of depth (Yu A1) "
+                     "x 2.1"),
+    "sag_height": ("of_depth", 2.0e-4,
+                   "a point of the configuration; measured worst 7.6e-5 of depth (Yu A3) x "
+                   "2.1"),
     # m; arc length of a crest/sag (parabolic vertex of the height): measured worst
     # 0.009 m (crests) and 0.015 m (sags, hard-slack-touchdown); x3.3 -> 0.05 m, the
     # floor of a tolerance conditioned on the feature's flatness (feature_s below: a
     # vertex sits where the angle crosses zero, so an angle difference moves it by the
     # angle over the curvature there; a flat crest's position is ill-conditioned)
-    "crest_s": ("feature_s", 0.05),
-    "sag_s": ("feature_s", 0.05),
+    "crest_s": ("feature_s", 0.05,
+                "measured worst 0.015 m x 3.3, the floor of the angle agreement over the "
+                "feature's curvature"),
+    "sag_s": ("feature_s", 0.05,
+              "measured worst 0.015 m x 3.3, the floor of the angle agreement over the "
+              "feature's curvature"),
     # the largest moment: measured worst 0.095 % of M_max (Yu A1); x2.1 -> 0.2 %.
-    "max_moment": ("of_M_max", 2.0e-3),
+    "max_moment": ("of_M_max", 2.0e-3,
+                   "measured worst 0.095 % of M_max (Yu A1) x 2.1"),
     # m; location of the largest moment (parabolic vertex; peaks within the max_moment
     # tolerance of the maximum count as ties, see compare.peak_location_distance).
     # Measured worst 0.080 m (scr-steel); x2.5 -> 0.2 m.
-    "max_moment_s": ("abs", 0.2),
+    "max_moment_s": ("abs", 0.2,
+                     "measured worst 0.080 m (scr-steel) x 2.5; peaks within max_moment's "
+                     "tolerance are ties"),
     # ---- 3D rows (a profile with a lateral offset from the line's plane, issue 32): the
     # planar targets carried over, each a point or a component of a planar row. MEASURED
     # (issue 32) on the 7 3D built-in scenes and the 14 3D headings of `reproduce
@@ -128,21 +160,29 @@ TOLERANCES = {
     # (scr-steel-current-45), configuration 0.36 (yu2021-a3-current-90).
     # The bending moment vector's out-of-plane component along s: the moment profile's
     # target. Measured worst 0.0076 % of M_max (yu2021-a3 at 112.5 deg).
-    "moment_out_of_plane": ("of_M_max", 5.0e-3),
+    "moment_out_of_plane": ("of_M_max", 5.0e-3,
+                            "the moment profile's target; measured worst 0.0076 % of M_max"),
     # its largest magnitude: max_moment's tolerance. Measured worst 0.0070 % of M_max.
-    "max_moment_out_of_plane": ("of_M_max", 2.0e-3),
+    "max_moment_out_of_plane": ("of_M_max", 2.0e-3,
+                                "max_moment's; measured worst 0.0070 % of M_max"),
     # the largest lateral excursion from the line's plane: a point of the configuration,
     # its target. Measured worst 0.0030 % of depth (0.015 m of 129 m, yu2021-a3-current-90).
-    "max_lateral_offset": ("of_depth", 2.0e-4),
+    "max_lateral_offset": ("of_depth", 2.0e-4,
+                           "a point of the configuration; measured worst 0.0030 % of depth"),
     # m; the touchdown's lateral offset: the touchdown position's tolerance (tdp_x).
     # Measured worst 0.028 m (yu2021-a3-current-90).
-    "tdp_lateral": ("abs", 0.25),
+    "tdp_lateral": ("abs", 0.25,
+                    "the touchdown position's (tdp_x); measured worst 0.028 m"),
     # the lateral offset at a crest or sag: a point of the configuration (its target)
     # plus the lateral slope times the feature's position tolerance (feature_s: a flat
     # crest's position is ill-conditioned, and so is what is read there). Measured worst
     # 0.0033 % of depth (0.017 m, a crest of yu2021-a3-current-90).
-    "crest_lateral": ("feature_lateral", 2.0e-4),
-    "sag_lateral": ("feature_lateral", 2.0e-4),
+    "crest_lateral": ("feature_lateral", 2.0e-4,
+                      "a point of the configuration plus the slope times the position "
+                      "tolerance; measured worst 0.0033 % of depth"),
+    "sag_lateral": ("feature_lateral", 2.0e-4,
+                    "a point of the configuration plus the slope times the position "
+                    "tolerance; measured worst 0.0033 % of depth"),
 }
 
 #: the angle [deg] to which the two methods' lines agree along the line: the hang-off
@@ -249,8 +289,8 @@ def tolerance(name: str, *, bvp_value: float | None = 0.0, depth: float = 1.0,
 
     Returns ``{"tol": absolute tolerance in the unit of the quantity, "label": e.g.
     '0.5 % of M_max', "basis": the value that normalises the relative difference (None
-    when there is none), "basis_label": e.g. 'M_max'}``."""
-    kind, value = TOLERANCES[base_name(name)]
+    when there is none), "basis_label": e.g. 'M_max'}``; :func:`reason` says why."""
+    kind, value, _ = TOLERANCES[base_name(name)]
     u = unit(name)
     if kind == "feature_s":
         tol = feature_position_tolerance(curvature, value)
@@ -278,6 +318,11 @@ def tolerance(name: str, *, bvp_value: float | None = 0.0, depth: float = 1.0,
             "basis": basis if basis else None,
             "basis_label": _FLOOR_LABEL[floor_kind] if label.endswith("(floor)")
             else label}
+
+
+def reason(name: str) -> str:
+    """Why row ``name``'s tolerance is what it is (the table's third field)."""
+    return TOLERANCES[base_name(name)][2]
 
 
 def tolerance_value(name: str, *, bvp_value: float = 0.0, depth: float = 1.0,

@@ -102,9 +102,8 @@ COARSE_REASON = ("at twice the scene's element length (the cost): reported, not 
 def _reported_only(dc) -> None:
     """Mark the judged rows of ``dc`` reported (:data:`COARSE_REASON`)."""
     for r in dc.results:
-        for row in r.rows:
-            if row["pass"] is not None:
-                row["pass"], row["reason"] = None, COARSE_REASON
+        r.rows[:] = [row.judged(None, COARSE_REASON) if row.passed is not None else row
+                     for row in r.rows]
 
 
 def _with_motion(scene, axis: str, period: float, amplitude: float):

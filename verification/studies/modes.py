@@ -26,7 +26,7 @@ def run_unit(scene_name: str, out: Path, note: str = "", full: bool = False) -> 
     """Modes of one built-in scene into ``out/scene_name``; returns the log line."""
     t0 = time.perf_counter()
     run = run_modes(resolve(scene_name), COUNT, Path(out) / scene_name)
-    n_ok = sum(r["meets"] for r in run.rows)
+    n_ok = sum(r.passed for r in run.rows)
     return (f"modes {scene_name}: {n_ok}/{len(run.rows)} pairs within the target "
             f"({time.perf_counter() - t0:.1f} s)")
 

@@ -311,9 +311,8 @@ def compare_dynamics(scene: Scene, *, amplitudes=None, element_length: float | N
                                progress)
         rows, zone, warns = agreement_rows(matched, fd, vf, static)
         if k > 0:                  # the linear limit is judged; the rest measures nonlinearity
-            for row in rows:
-                if row["pass"] is not None:
-                    row["pass"], row["reason"] = None, ABOVE_SMALLEST
+            rows = [row.judged(None, ABOVE_SMALLEST) if row.passed is not None else row
+                    for row in rows]
         results.append(AmplitudeResult(a, fd, vf, rows, station_rows(fd, vf, static),
                                        nonlinearity(vf, zone), warns, wall, fd.wall_time_s))
     return DynamicComparison(scene, matched, axis, period, h, results, static, notes)

@@ -15,6 +15,8 @@ from riser.results.response import HarmonicResponse
 from riser.model.scene import Scene
 from riser.model.sections import segment_properties
 
+from ..row import Row, Tolerance, Verdict
+
 #: the first harmonic's change between the window's halves above which a run is said
 #: not to have settled (see :mod:`.protocol`, where the settling is doubled on it)
 DRIFT_LIMIT = 1e-3
@@ -91,16 +93,22 @@ FIRST_ORDER_ZERO = ("zero at first order (a motion across the plane changes the 
 ZERO_FIRST_ORDER = 1e-9
 
 
-def _row(name, fd_value, vf_value, rel, where=None, slack=False, judged=True):
-    tol, basis, reason = TOLERANCES.get(name, (None, "", "reported, not judged"))
+def _row(name, fd_value, vf_value, rel, where=None, slack=False, judged=True,
+         bound: str | None = None) -> Row:
+    """A verdict row, VFIFE against FD (``rel``: the relative difference; ``where`` [m]);
+    its tolerance that of ``bound`` (default: the row's own name) in :data:`TOLERANCES`,
+    judged relative; not judged when ``judged`` is False, the line goes slack (``slack``)
+    or a first harmonic is zero at first order."""
+    tol, basis, reason = TOLERANCES.get(bound or name, (None, "", "reported, not judged"))
     if rel is None and judged and fd_value is not None and fd_value == 0.0:
         judged, reason = False, FIRST_ORDER_ZERO
     elif not judged:
         reason = "reported, not judged"
     ok = None if (slack or not judged or tol is None or rel is None) else bool(abs(rel) <= tol)
-    return {"quantity": name, "fd": fd_value, "vfife": vf_value, "rel_diff": rel,
-            "s": where, "tolerance": tol if judged else None, "basis": basis,
-            "reason": reason, "pass": ok}
+    tolerance = (Tolerance(tol, None, basis, "", reason, relative=True) if judged
+                 else Tolerance(None, None, basis, relative=True))
+    return Row(name, {"fd": fd_value, "vfife": vf_value}, "", None, rel, tolerance,
+               Verdict.of(ok), "" if judged else reason, where)
 
 
 def agreement_rows(scene: Scene, fd: HarmonicResponse, vf: dict, static):
@@ -137,11 +145,8 @@ def agreement_rows(scene: Scene, fd: HarmonicResponse, vf: dict, static):
             continue
         rel, where = _along(q[name], vf[name].first, s, keep)
         rows.append(_row(f"{name}_amplitude", float(np.max(np.abs(q[name][keep]))),
-                         float(np.max(vf[name].amplitude[keep])), rel, where, slack))
-        rows[-1]["tolerance"], rows[-1]["basis"], rows[-1]["reason"] = \
-            TOLERANCES["moment_amplitude"]
-        rows[-1]["pass"] = None if slack or rel is None else bool(
-            abs(rel) <= rows[-1]["tolerance"])
+                         float(np.max(vf[name].amplitude[keep])), rel, where, slack,
+                         bound="moment_amplitude"))
         if zone is not None:
             rel, where = _along(q[name], vf[name].first, s, ~keep)
             rows.append(_row(f"{name}_amplitude_contact_zone", None, None, rel, where,
@@ -208,7 +213,7 @@ def wrap_deg(deg: float) -> float:
     return (deg + 180.0) % 360.0 - 180.0
 
 
-def design_row(scene: Scene, fd: HarmonicResponse, vf: dict, s) -> dict:
+def design_row(scene: Scene, fd: HarmonicResponse, vf: dict, s) -> Row:
     """With [design], the largest dynamic utilisation: the FD's over a cycle of its first
     harmonic about the static state (:func:`riser.design.checks.harmonic_columns`) against
     the VFIFE's largest over its window (every sample: its higher harmonics too);

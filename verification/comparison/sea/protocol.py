@@ -38,6 +38,7 @@ from riser.model.scene import Scene
 from verification.methods import method
 from verification.pipeline import vfife_equivalent
 
+from ..row import Row, Tolerance, Verdict
 from ..dynamic.protocol import (RAMP_FUNDAMENTALS, RAMP_PERIODS, ramp_periods, require_one_drive,
                        tightened_statics)
 
@@ -186,7 +187,7 @@ def read_record(res, start: float) -> dict:
             "record_s": float(n * dt), "samples": n}
 
 
-def agreement_rows(fd: SeaResponse, vf: dict, static) -> list[dict]:
+def agreement_rows(fd: SeaResponse, vf: dict, static) -> list[Row]:
     """The rows of the comparison (see the module docstring)."""
     T0 = float(static.profile.tension[-1])
     fd_std = float(fd.std["tension"][-1])
@@ -197,11 +198,11 @@ def agreement_rows(fd: SeaResponse, vf: dict, static) -> list[dict]:
         peak = float(np.max(q_fd))
         diff = np.abs(vf[f"{key}_std"] - q_fd)
         k = int(np.argmax(diff))
-        rows.append({"quantity": f"{key}_std_along_s", "fd": peak,
-                     "vfife": float(np.max(vf[f"{key}_std"])),
-                     "rel_diff": float(diff[k]) / peak if peak > 0 else None,
-                     "s": float(vf["s"][k]), "tolerance": None,
-                     "basis": "largest difference over the FD's peak", "pass": None})
+        rows.append(Row(f"{key}_std_along_s",
+                        {"fd": peak, "vfife": float(np.max(vf[f"{key}_std"]))}, "", None,
+                        float(diff[k]) / peak if peak > 0 else None,
+                        Tolerance(None, None, "largest difference over the FD's peak",
+                                  relative=True), at_s=float(vf["s"][k])))
     fd_tz = float(fd.tz["tension"][-1])
     rows.append(_row("hang_off_tension_tz_s", fd_tz, vf["tz"], None, "of the FD value",
                      False))
@@ -213,8 +214,9 @@ def agreement_rows(fd: SeaResponse, vf: dict, static) -> list[dict]:
     return rows
 
 
-def _row(name, fd_value, vf_value, tol, basis, judged) -> dict:
+def _row(name, fd_value, vf_value, tol, basis, judged) -> Row:
+    """A row of the VFIFE's value against the FD's, relative (``basis``: its label)."""
     rel = (vf_value / fd_value - 1.0) if (fd_value and vf_value is not None) else None
     ok = None if not judged else (rel is not None and abs(rel) <= tol)
-    return {"quantity": name, "fd": fd_value, "vfife": vf_value, "rel_diff": rel,
-            "s": None, "tolerance": tol, "basis": basis, "pass": ok}
+    return Row(name, {"fd": fd_value, "vfife": vf_value}, "", None, rel,
+               Tolerance(tol, None, basis, relative=True), Verdict.of(ok))

@@ -23,6 +23,8 @@ from verification.runtime.stable import QUANTA
 
 from .protocol import TOLERANCE, SeaComparison
 
+#: the columns of sea_agreement.csv (each row's, :class:`~..row.Row`)
+SEA_COLUMNS = ("quantity", "fd", "vfife", "rel_diff", "s", "tolerance", "basis", "pass")
 FILES = ("sea_agreement.csv", "sea_along_s.csv", "spectra.csv", "sea_response.png",
          "spectra.png", "sea_tension.png", "report.md")
 PASS_WORD = {True: "yes", False: "**no**", None: "n/a"}
@@ -46,7 +48,8 @@ def frames(sc: SeaComparison) -> dict:
     spectra = pd.DataFrame({"omega": fd.omega, "wave_density": fd.wave_density,
                             "fd_hang_off_tension_density": fd.spectra["tension"][:, -1],
                             "vfife_hang_off_tension_density": vf_at})
-    return {"sea_agreement.csv": pd.DataFrame(sc.rows), "sea_along_s.csv": along,
+    return {"sea_agreement.csv": pd.DataFrame([r.record(SEA_COLUMNS) for r in sc.rows],
+                                              columns=SEA_COLUMNS), "sea_along_s.csv": along,
             "spectra.csv": spectra}
 
 

@@ -42,7 +42,8 @@ from verification.quantities import (
     signed_moment,
 )
 
-from ..tolerances import scene_scales, tolerance, tolerance_value, unit
+from ..row import Row, Tolerance, Verdict
+from ..tolerances import reason, scene_scales, tolerance, tolerance_value, unit
 
 #: the columns of every agreement.csv; the further columns of a comparison (the analytic
 #: method, a peer) each add ``NAME`` and ``NAME_rel_diff`` after them (.columns)
@@ -58,14 +59,16 @@ MOMENT_ROWS = ("moment", "max_moment", "max_moment_s", "moment_out_of_plane",
 def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
               s_shift: float = 0.0, nodal: bool = False,
               moment_reason: str | None = None, ends=None, points=(),
-              scene=None) -> list[dict]:
+              scene=None, names: tuple[str, str] = ("bvp", "vfife")) -> list[Row]:
     """The protocol's rows for two static profiles.
 
-    Each row has the :data:`AGREEMENT_COLUMNS` (``abs_diff`` = |VFIFE - BVP|, ``rel_diff``
-    = the signed (VFIFE - BVP) / basis with the basis of the row's tolerance, see
-    :func:`verification.comparison.tolerances.tolerance`) and, for the report, ``unit``, ``diff``
-    (signed, in the unit), ``basis_label``, ``tol_label`` and ``at_s`` (arc length of the
-    largest profile difference, BVP coordinate). ``s_shift`` [m] is subtracted from the
+    Each row is a :class:`~..row.Row` with the two methods' values under ``names`` (the
+    BVP's first; a further column's rows name their own method second: ``analytic``,
+    ``moordyn``), ``diff`` the signed second - first in the row's unit, ``rel_diff`` over
+    the basis of the row's tolerance (:func:`verification.comparison.tolerances.tolerance`;
+    its label the tolerance's reason), ``at_s`` the arc length of the largest profile
+    difference (BVP coordinate); as a mapping it reads as the :data:`AGREEMENT_COLUMNS`
+    (``abs_diff`` = |second - first|, ``pass``). ``s_shift`` [m] is subtracted from the
     VFIFE arc lengths. ``nodal``: take the BVP tension through the mean of two segments at
     each node (module docstring; a MoorDyn profile); False (the VFIFE's second-order
     nodal values, the analytic method's) compares point values. ``moment_reason``: why the moment cannot be
@@ -84,7 +87,8 @@ def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
     one); its scales bound the relative tolerances below
     (:func:`~..tolerances.scene_scales`, with the BVP hang-off tension; issue 44:
     round-off never fails a row); None: no floors."""
-    rows: list[dict] = []
+    rows: list[Row] = []
+    first, second = names
     vf = shifted(vf_prof, s_shift)
     sb, sv = summarize(bvp_prof), summarize(vf)
     lo = max(bvp_prof.s[0], vf.s[0])
@@ -97,20 +101,17 @@ def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
     def add(name, b, v, diff=None, at_s=None, note="", curvature=None, slope=0.0):
         """A row; ``diff`` is the signed difference (default v - b)."""
         t = tolerance(name, bvp_value=b, curvature=curvature, slope=slope, **scales)
-        row = {"quantity": name, "bvp": b, "vfife": v, "unit": unit(name), "at_s": at_s,
-               "note": note,
-               "tol_label": t["label"], "basis_label": t["basis_label"], "basis": t["basis"],
-               "tolerance": t["tol"]}
+        tol = Tolerance(t["tol"], t["basis"], t["basis_label"], t["label"], reason(name))
         if diff is None and (v is None or b is None):
-            row.update({"abs_diff": None, "rel_diff": None, "diff": None, "pass": False})
+            d, rel, verdict = None, None, Verdict.FAIL
         else:
             d = float(v - b) if diff is None else float(diff)
-            row.update({"diff": d, "abs_diff": abs(d),
-                        "rel_diff": d / t["basis"] if t["basis"] else None,
-                        "pass": bool(abs(d) <= t["tol"])})
+            rel = d / t["basis"] if t["basis"] else None
+            verdict = Verdict.of(bool(abs(d) <= t["tol"]))
         if moment_reason and name in MOMENT_ROWS:
-            row.update({"pass": None, "note": moment_reason})
-        rows.append(row)
+            verdict, note = Verdict.NOT_JUDGED, moment_reason
+        rows.append(Row(name, {first: b, second: v}, unit(name), d, rel, tol, verdict, note,
+                        at_s))
 
     dmax, drms, s_at = curve_distance(bvp_prof, vf, (lo, hi))
     add("configuration", None, None, diff=dmax, at_s=s_at)
@@ -170,10 +171,8 @@ def agreement(bvp_prof: Profile, vf_prof: Profile, depth: float,
                     slope=float(np.interp(cb["s"], bvp_prof.s, lateral_slope)))
         if len(sv[kind]) != len(sb[kind]):
             n_b, n_v = len(sb[kind]), len(sv[kind])
-            rows.append({"quantity": f"{kind}_count", "bvp": n_b, "vfife": n_v, "unit": "-",
-                         "diff": n_v - n_b, "abs_diff": abs(n_v - n_b), "rel_diff": None,
-                         "tolerance": 0, "tol_label": "equal", "basis_label": "",
-                         "basis": None, "at_s": None, "pass": False})
+            rows.append(Row(f"{kind}_count", {first: n_b, second: n_v}, "-", n_v - n_b, None,
+                            Tolerance(0, None, "", "equal"), Verdict.FAIL))
     add("max_moment", sb["max_moment"], sv["max_moment"])
     if three_d:
         add("max_moment_out_of_plane", sb["max_moment_out_of_plane"],

@@ -47,10 +47,10 @@ class AnalyticColumn:
                                 f"{res.status.value}: {res.message}.")
         profile = shifted(res.profile, comp.s_shift)
         rows = agreement(shifted(comp.bvp.profile, comp.s_shift), profile, comp.depth,
-                         scene=comp.matched_scene)
+                         scene=comp.matched_scene, names=("bvp", self.name))
         i = res.info
         return ColumnResult(
-            self, res, profile, verdict_values(comp.rows, rows), rows,
+            self, res, profile, verdict_values(comp.rows, rows, self.name), rows,
             note=(f"The analytic method ({i['analytic_model']}, "
                   f"{timed(res.wall_time_s, '.2f', ' ms')}) solved the same scene: "
                   f"eps = {i['epsilon']:.3g}, delta = "
@@ -69,17 +69,17 @@ class AnalyticColumn:
                   "moment-free layer at the hang-off) was measured to converge as eps^2 in "
                   "angle and position and about eps^3 in the peak moment "
                   "(`reports/kang2015/`, epsilon scaling).", ""]
-        mine = {r["quantity"]: r for r in res.rows}
+        mine = {r.quantity: r for r in res.rows}
         table = []
         for r in comp.rows:
-            a = mine.get(r["quantity"])
-            if a is None or a.get("diff") is None:
+            a = mine.get(r.quantity)
+            if a is None or a.diff is None:
                 continue
-            rel, label = a.get("rel_diff"), r.get("basis_label") or ""
-            table.append((f"`{r['quantity']}`", r.get("unit", ""), num(r["bvp"]),
-                          num(a["vfife"]), signed(a["diff"]),
+            rel, label = a.rel_diff, r["basis_label"]
+            table.append((f"`{r.quantity}`", r.unit, num(r.value("bvp")),
+                          num(a.value(self.name)), signed(a.diff),
                           "" if rel is None else f"{100.0 * rel:+.3g} %"
-                          + (f" of {label}" if label else ""), signed(r.get("diff"))))
+                          + (f" of {label}" if label else ""), signed(r.diff)))
         lines.append(md_table(["quantity", "unit", "BVP", "analytic", "analytic - BVP",
                                "relative", "VFIFE - BVP"], table))
         return lines

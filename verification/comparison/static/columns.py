@@ -37,8 +37,9 @@ class ColumnResult:
     profile : its static profile in the scene's arc length (None: no profile).
     values : verdict quantity -> (its value, its signed difference to the BVP over the
         row's basis); the agreement.csv columns ``NAME`` and ``NAME_rel_diff``.
-    rows : its own rows against the BVP, for its report section and files (each a dict
-        with at least ``quantity``, ``unit``, ``bvp``, ``diff``, ``rel_diff``).
+    rows : its own rows against the BVP, for its report section and files
+        (:class:`~verification.comparison.row.Row`: the BVP's value and its own, under its
+        name).
     note : one paragraph: what it solved, or why it does not apply.
     ok : False when it was asked for and failed (the command exits 1); a column that does
         not apply to a scene is ok.
@@ -91,11 +92,11 @@ class Column(Protocol):
         """What its agreement.csv columns hold, for the report's list of files."""
 
 
-def verdict_values(rows: list[dict], own_rows: list[dict]) -> dict:
+def verdict_values(rows: list, own_rows: list, name: str) -> dict:
     """The values a column gives the verdict rows ``rows``: quantity -> (its value, its
     rel_diff), for the quantities present in both. ``own_rows``: the rows of
-    :func:`~.protocol.agreement` with the BVP's profile first and the column's second
-    (its value is then in the key ``vfife``, the second profile's)."""
-    mine = {r["quantity"]: r for r in own_rows}
-    return {r["quantity"]: (mine[r["quantity"]]["vfife"], mine[r["quantity"]].get("rel_diff"))
-            for r in rows if r["quantity"] in mine}
+    :func:`~.agreement.agreement` with the BVP's profile first and the column's second,
+    its values under its ``name``."""
+    mine = {r.quantity: r for r in own_rows}
+    return {r.quantity: (mine[r.quantity].value(name), mine[r.quantity].rel_diff)
+            for r in rows if r.quantity in mine}

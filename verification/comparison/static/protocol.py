@@ -83,7 +83,8 @@ class Comparison:
     def frame(self) -> pd.DataFrame:
         """agreement.csv: the verdict rows (:data:`AGREEMENT_COLUMNS`), then ``NAME`` and
         ``NAME_rel_diff`` of each further column (empty where it gives no value)."""
-        df = pd.DataFrame(self.rows, columns=AGREEMENT_COLUMNS)
+        df = pd.DataFrame([r.record(AGREEMENT_COLUMNS) for r in self.rows],
+                          columns=AGREEMENT_COLUMNS)
         for name, res in self.columns.items():
             values = [res.value(q) for q in df["quantity"]]
             df[name] = [v for v, _ in values]

@@ -21,6 +21,7 @@ import numpy as np
 from riser.results.profile import Profile
 from verification.comparison.static.agreement import agreement
 from verification.comparison.static.columns import ColumnResult, verdict_values
+from verification.comparison.row import Row, Tolerance, Verdict
 from verification.comparison.tolerances import base_name
 from verification.pipeline import shifted
 from verification.quantities import signed_moment
@@ -85,24 +86,24 @@ def reference(comp) -> tuple[Profile, Profile]:
     return shifted(bp, comp.s_shift), bp
 
 
-def lateral_rows(ref: Profile, md: Profile, depth: float) -> list[dict]:
-    """MoorDyn's row ``lateral``, when both profiles carry the lateral offset (in the form
-    of the protocol's rows: the BVP's value under ``bvp``, MoorDyn's under ``vfife``): the
-    largest difference of the lateral offset at MoorDyn's nodes (the BVP interpolated
-    there). The protocol's own 3D rows (the out-of-plane moment, the lateral excursion,
-    ...) come with :func:`~verification.comparison.static.agreement.agreement`."""
+def lateral_rows(ref: Profile, md: Profile, depth: float) -> list[Row]:
+    """MoorDyn's row ``lateral``, when both profiles carry the lateral offset (a row of
+    the BVP and MoorDyn, no value of either: a difference along s): the largest difference
+    of the lateral offset at MoorDyn's nodes (the BVP interpolated there). The protocol's
+    own 3D rows (the out-of-plane moment, the lateral excursion, ...) come with
+    :func:`~verification.comparison.static.agreement.agreement`."""
     if ref.lateral is None or md.lateral is None:
         return []
     lo, hi = max(ref.s[0], md.s[0]), min(ref.s[-1], md.s[-1])
     sel = (md.s >= lo - 1e-9) & (md.s <= hi + 1e-9)
     d = md.lateral[sel] - np.interp(md.s[sel], ref.s, ref.lateral)
     i = int(np.argmax(np.abs(d)))
-    return [{"quantity": "lateral", "unit": "m", "bvp": None, "vfife": None,
-             "diff": float(d[i]), "rel_diff": float(d[i]) / depth, "basis": depth,
-             "basis_label": "depth", "at_s": float(md.s[sel][i])}]
+    return [Row("lateral", {"bvp": None, "moordyn": None}, "m", float(d[i]),
+                float(d[i]) / depth, Tolerance(None, depth, "depth"),
+                at_s=float(md.s[sel][i]))]
 
 
-def tolerance(row: dict, h: float) -> tuple[float | None, str, str]:
+def tolerance(row: Row, h: float) -> tuple[float | None, str, str]:
     """(absolute tolerance, label, reason) of MoorDyn's row ``row`` at segment length h."""
     entry = TOLERANCES.get(base_name(row["quantity"]))
     if entry is None:
@@ -147,32 +148,33 @@ class MoorDynColumn:
                    profile=start, ic_time=self.ic_time, progress=progress)
         if peer.profile is None:
             return ColumnResult(self, peer, note=peer.message, ok=peer.converged)
-        vf = {r["quantity"]: r for r in comp.rows}
+        vf = {r.quantity: r for r in comp.rows}
         # the scene's floors of the relative rows' bases (issue 44: round-off never FAILs)
         own = agreement(rp, peer.profile, comp.depth, nodal=True,
-                        scene=comp.matched_scene)
+                        scene=comp.matched_scene, names=("bvp", self.name))
         rows = []
-        have = {r["quantity"] for r in own}
+        have = {r.quantity for r in own}
         extra = [r for r in lateral_rows(rp, peer.profile, comp.depth)
-                 if r["quantity"] not in have]
+                 if r.quantity not in have]
         for r in own + extra:
+            # this column's own tolerance (its segments, not the VFIFE's elements); the
+            # VFIFE's value of the verdict row beside
             tol, label, why = tolerance(r, self.segment_length)
-            d = r.get("diff")
-            rows.append({"quantity": r["quantity"], "unit": r.get("unit", ""), "bvp": r["bvp"],
-                         "vfife": vf.get(r["quantity"], {}).get("vfife"),
-                         "moordyn": r["vfife"], "diff": d, "rel_diff": r.get("rel_diff"),
-                         "at_s": r.get("at_s"), "basis_label": r.get("basis_label", ""),
-                         "tolerance": tol, "tol_label": label,
-                         "pass": None if tol is None or d is None else bool(abs(d) <= tol),
-                         "reason": why, "reference": "bvp"})
+            v = vf[r.quantity].value("vfife") if r.quantity in vf else None
+            basis = r.tolerance.basis_label if r.tolerance is not None else ""
+            rows.append(r.replace(
+                values={"bvp": r.value("bvp"), self.name: r.value(self.name), "vfife": v},
+                tolerance=Tolerance(tol, None, basis, label, why),
+                verdict=Verdict.of(None if tol is None or r.diff is None
+                                   else bool(abs(r.diff) <= tol)), note=""))
         b, seg = float(rp.tension[-1]), peer.info["hang_off_end_segment_tension"]
-        rows.append({
-            "quantity": "hang_off_segment_tension", "unit": "N", "bvp": b, "vfife": None,
-            "moordyn": seg, "diff": seg - b, "rel_diff": (seg - b) / b, "at_s": None,
-            "basis_label": "itself", "tolerance": None, "tol_label": "", "pass": None,
-            "reason": "the last segment's tension (GetLineFairTen), half a segment below the "
-            "end: shown, not assessed", "reference": "bvp"})
-        return ColumnResult(self, peer, peer.profile, verdict_values(comp.rows, own), rows,
+        rows.append(Row("hang_off_segment_tension", {"bvp": b, self.name: seg, "vfife": None},
+                        "N", seg - b, (seg - b) / b,
+                        Tolerance(None, None, "itself", "", "the last segment's tension "
+                                  "(GetLineFairTen), half a segment below the end: shown, "
+                                  "not assessed")))
+        return ColumnResult(self, peer, peer.profile,
+                            verdict_values(comp.rows, own, self.name), rows,
                             note=peer.message, ok=peer.converged)
 
     def markdown(self, comp, res: ColumnResult, heading: str = "#") -> list[str]:
@@ -249,13 +251,13 @@ def moordyn_markdown(comp, res: ColumnResult, heading: str = "#") -> list[str]:
               "`verification/peers/moordyn/column.py`.", ""]
     rows = []
     for r in res.rows:
-        rel = r.get("rel_diff")
-        rows.append((f"`{r['quantity']}`", r["unit"], _n(r["bvp"]), _n(r["vfife"]),
-                     _n(r["moordyn"]), _n(r["diff"]) + (f" at s = {r['at_s']:.1f}"
-                                                         if r.get("at_s") is not None else ""),
+        rel = r.rel_diff
+        rows.append((f"`{r.quantity}`", r.unit, _n(r.value("bvp")), _n(r.value("vfife")),
+                     _n(r.value("moordyn")), _n(r.diff) + (f" at s = {r.at_s:.1f}"
+                                                           if r.at_s is not None else ""),
                      "" if rel is None else f"{100 * rel:+.3g} %",
-                     r["tol_label"], {True: "yes", False: "**no**", None: "-"}[r["pass"]],
-                     r["reason"]))
+                     r.tolerance.label, {True: "yes", False: "**no**", None: "-"}[r.passed],
+                     r.tolerance.reason))
     lines.append(md_table(["quantity", "unit", "BVP", "VFIFE", "MoorDyn", "MoorDyn - BVP",
                            "relative", "tolerance", "within", "reason"], rows))
     lines += ["", "Files: `moordyn/agreement.csv` (these rows), `moordyn/profile.csv` (MoorDyn's "
@@ -272,7 +274,7 @@ def write(comp, res: ColumnResult, out: Path) -> None:
         return
     d = Path(out) / "moordyn"
     d.mkdir(parents=True, exist_ok=True)
-    pd.DataFrame(res.rows, columns=PEER_COLUMNS).to_csv(
+    pd.DataFrame([r.record(PEER_COLUMNS) for r in res.rows], columns=PEER_COLUMNS).to_csv(
         d / "agreement.csv", index=False, float_format="%.8g")
     p = peer.profile
     bp, _ = reference(comp)
@@ -292,10 +294,10 @@ def summary_lines(res: ColumnResult) -> list[str]:
     """The command line's lines on the MoorDyn column."""
     out = [f"  moordyn: {res.result.status.value}: {res.result.message}"]
     for r in res.rows:
-        if r["pass"] is not None and r["diff"] is not None:
-            out.append(f"    {'ok  ' if r['pass'] else 'OUT '} {r['quantity']:<22} MoorDyn - "
-                       f"BVP {r['diff']:.6g} {r['unit']} "
-                       f"(tolerance {r['tol_label']})")
+        if r.passed is not None and r.diff is not None:
+            out.append(f"    {'ok  ' if r.passed else 'OUT '} {r.quantity:<22} MoorDyn - "
+                       f"BVP {r.diff:.6g} {r.unit} "
+                       f"(tolerance {r.tolerance.label})")
     return out
 
 

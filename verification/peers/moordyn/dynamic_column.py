@@ -18,6 +18,7 @@ import numpy as np
 import pandas as pd
 
 from verification.comparison.dynamic.rows import wrap_deg
+from verification.comparison.row import Row, Tolerance, Verdict
 from verification.comparison.dynamic.protocol import ORBIT, RAMP_PERIODS, SETTLE_PERIODS, dynamic_scene
 from verification.report.markdown import md_table, pct
 
@@ -81,22 +82,19 @@ def dynamic(dc, out, progress=None) -> tuple[str, list[str]]:
         _row("hang_off_tension_phase_deg", h["hang_off_tension_phase_deg"],
              float(np.degrees(np.angle(fd_top))), float(np.degrees(np.angle(vf_top))),
              relative=False),
-        {"quantity": "tension_amplitude_along_s", "moordyn": float(np.max(md_along[inner])),
-         "fd": peak, "vfife": float(np.max(vf_along[inner])),
-         "moordyn_vs_fd": float(np.max(np.abs(md_along - fd_along)[inner]) / peak),
-         "moordyn_vs_vfife": float(np.max(np.abs(md_along - vf_along)[inner]) / peak),
-         "tolerance": TOLERANCE}]
-    for r in rows:
-        r["within"] = bool(abs(r["moordyn_vs_fd"]) <= r["tolerance"])
-    pd.DataFrame(rows).to_csv(folder / "dynamic_agreement.csv", index=False,
-                              float_format="%.8g")
+        _along_row(md_along, fd_along, vf_along, inner, peak)]
+    pd.DataFrame([{"quantity": r.quantity, "moordyn": r.value("moordyn"), "fd": r.value("fd"),
+                   "vfife": r.value("vfife"), "moordyn_vs_fd": r["moordyn_vs_fd"],
+                   "moordyn_vs_vfife": r["moordyn_vs_vfife"], "tolerance": r.tolerance.value,
+                   "within": r.passed} for r in rows]).to_csv(
+        folder / "dynamic_agreement.csv", index=False, float_format="%.8g")
     table = md_table(["quantity", "MoorDyn", "FD", "VFIFE", "MoorDyn vs FD",
                       "MoorDyn vs VFIFE", "tolerance", "within"],
-                     [(f"`{r['quantity']}`", r["moordyn"], r["fd"], r["vfife"],
-                       _fmt(r, "moordyn_vs_fd"), _fmt(r, "moordyn_vs_vfife"), r["tolerance"],
-                       "yes" if r["within"] else "**no**") for r in rows])
-    lines = [f"  moordyn (not in the verdict): {r['quantity']} {_fmt(r, 'moordyn_vs_fd')} vs "
-             f"the FD ({'within' if r['within'] else 'OUTSIDE'} its {r['tolerance']:g})"
+                     [(f"`{r.quantity}`", r.value("moordyn"), r.value("fd"), r.value("vfife"),
+                       _fmt(r, "moordyn_vs_fd"), _fmt(r, "moordyn_vs_vfife"),
+                       r.tolerance.value, "yes" if r.passed else "**no**") for r in rows])
+    lines = [f"  moordyn (not in the verdict): {r.quantity} {_fmt(r, 'moordyn_vs_fd')} vs "
+             f"the FD ({'within' if r.passed else 'OUTSIDE'} its {r.tolerance.value:g})"
              for r in rows]
     return ("\n## MoorDyn (third opinion, not in the verdict)\n\n"
             f"MoorDyn-C, {SEGMENT_LENGTH:g} m segments, "
@@ -119,15 +117,36 @@ TOLERANCE_REASON = ("lumped 10 m segments, the end node's force without its iner
                     "bending stiffness in the VFIFE's form; measured 0.6 % on scr-steel")
 
 
-def _row(name, md, fd, vf, relative: bool) -> dict:
+def _row(name, md, fd, vf, relative: bool) -> Row:
+    """MoorDyn's value against the FD's (relative, or in deg for a phase), the VFIFE's
+    beside (``moordyn_vs_vfife``)."""
     if relative:
         a, b = md / fd - 1.0, md / vf - 1.0
     else:
         a, b = wrap_deg(md - fd), wrap_deg(md - vf)
-    return {"quantity": name, "moordyn": md, "fd": fd, "vfife": vf, "moordyn_vs_fd": a,
-            "moordyn_vs_vfife": b, "tolerance": TOLERANCE if relative else 1.0}
+    tol = TOLERANCE if relative else 1.0
+    return Row(name, {"fd": fd, "moordyn": md, "vfife": vf}, "" if relative else "deg",
+               None if relative else a, a if relative else None,
+               Tolerance(tol, None, "of the FD's" if relative else "", "",
+                         TOLERANCE_REASON, relative=relative),
+               Verdict.of(bool(abs(a) <= tol)),
+               extra={"moordyn_vs_fd": a, "moordyn_vs_vfife": b})
 
 
-def _fmt(r: dict, key: str) -> str:
+def _along_row(md_along, fd_along, vf_along, inner, peak: float) -> Row:
+    """The tension amplitude along s (interior nodes): the largest difference over the
+    FD's peak."""
+    a = float(np.max(np.abs(md_along - fd_along)[inner]) / peak)
+    return Row("tension_amplitude_along_s",
+               {"fd": peak, "moordyn": float(np.max(md_along[inner])),
+                "vfife": float(np.max(vf_along[inner]))}, "", None, a,
+               Tolerance(TOLERANCE, None, "of the FD's peak", "", TOLERANCE_REASON,
+                         relative=True), Verdict.of(bool(abs(a) <= TOLERANCE)),
+               extra={"moordyn_vs_fd": a,
+                      "moordyn_vs_vfife": float(np.max(np.abs(md_along - vf_along)[inner])
+                                                / peak)})
+
+
+def _fmt(r: Row, key: str) -> str:
     v = r[key]
-    return f"{v:+.3f} deg" if r["quantity"].endswith("_deg") else pct(v)
+    return f"{v:+.3f} deg" if r.quantity.endswith("_deg") else pct(v)

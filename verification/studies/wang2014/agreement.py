@@ -50,7 +50,7 @@ def judged(mdf: pd.DataFrame, depth: float) -> pd.DataFrame:
             tols.append(float("nan"))
             within.append(None)
             continue
-        kind, value = TOLERANCES[ROWS[r.quantity]]
+        kind, value, _ = TOLERANCES[ROWS[r.quantity]]
         scale = {"abs": 1.0, "rel": abs(r.bvp_matched), "of_depth": depth,
                  "of_T_max": abs(base[(r.current, "T_max")]),
                  "of_M_max": abs(base[(r.current, "M_max")])}[kind]
