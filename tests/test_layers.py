@@ -373,3 +373,17 @@ def test_no_function_outside_the_kernels_takes_more_than_30_parameters():
             if p.relative_to(ROOT).as_posix() != KERNELS
             for name, k in parameter_counts(p.read_text()).items() if k > 30}
     assert not long, long
+
+
+def test_the_kernels_run_takes_its_arrays_grouped():
+    # kernels.run took 68 positional arguments from a 70-attribute Model (issue 45); its
+    # arrays now come in named groups (State, Line, Sea, Effects, Scratch, Flow, Ends),
+    # measured at the same speed side by side (CHANGELOG.md, issue 45)
+    counts = parameter_counts((ROOT / KERNELS).read_text())
+    assert counts["run"] <= 16, counts["run"]
+    from vfife import kernels
+    groups = (kernels.State, kernels.Line, kernels.Sea, kernels.Effects, kernels.Scratch,
+              kernels.Flow, kernels.Ends)
+    fields = [f for g in groups for f in g._fields]
+    assert len(fields) == len(set(fields))                  # one name per array
+    assert "trib" in fields and "sband" not in (ROOT / KERNELS).read_text()

@@ -39,6 +39,7 @@ kernels (``*_2d``) run on the first two rows of the same arrays.
 from __future__ import annotations
 
 import math
+from collections import namedtuple
 
 import llvmlite.binding as _llvm
 import numpy as np
@@ -64,6 +65,36 @@ _FM = {"contract", "arcp", "reassoc", "nsz"}
 # per step (the bench kernels within +-5 %, the noise; docs/theory.md, Reproducibility;
 # tests/test_reproducible.py checks that no call is left).
 _JIT = dict(cache=True, error_model="numpy", fastmath=_FM, nogil=True, forceinline=True)
+
+# ------------------------------------------------------------------ the arrays of run()
+#: The arrays and flags :func:`run` takes, grouped by what they describe (named tuples:
+#: Numba passes them as one argument each and reads a field at no cost; the bench's
+#: kernel rows measured the same speed as 68 positional arguments, issue 45).
+#: the state: positions X [m], velocities V [m/s], directors D, rotation rates W [1/s] (3, n)
+State = namedtuple("State", "X V D W")
+#: the line's properties: per element (ne,) l0 [m], kax [N/m], kb [N m], eta [N s/m];
+#: per node (n,) mass [kg], im, imd (inverse masses), jinv, jrot, wload [N], kst [N/m],
+#: wair [N], iair [1/kg], madd [kg], trib [m] (tributary length), dnode [m] (outer
+#: diameter), cin (2, n) [kg], cdn, cdt (drag), cdp [kg/m] (point attachments' drag)
+Line = namedtuple("Line", "l0 kax kb mass im imd jinv jrot wload kst eta wair iair madd "
+                          "trib dnode cin cdn cdt cdp")
+#: the sea: the current's profile (heights [m], speeds [m/s], slopes [1/s], cdir its
+#: heading as the kernels take it, speeds_z, slopes_z of a turning current, cdir3 the 3D
+#: heading), the seabed (cseabed, mu, vfric), the surface heights ysurf [m], the waves'
+#: Taylor coefficients WT and the dead load P (3, n) [N]
+Sea = namedtuple("Sea", "heights speeds slopes cdir speeds_z slopes_z cdir3 cseabed mu "
+                        "vfric ysurf WT P")
+#: which effects run (booleans): drag, a turning current, the axial dashpots, the sea
+#: surface, internal flow, a dead load, waves, point attachments' drag
+Effects = namedtuple("Effects", "drag turning dashpot surface flow dead waves points")
+#: scratch arrays: element forces F, moments MA, MB, the current at the nodes U, Uz, the
+#: residuals R, the dashpot forces Q, the flow forces FL, the waves' values WV and loads PW
+Scratch = namedtuple("Scratch", "F MA MB U Uz R Q FL WV PW")
+#: internal flow: the time t0 [s] at the start of the call, its parameters and nodes
+Flow = namedtuple("Flow", "t0 fpar fnodes")
+#: the ends: the planar kernels' end conditions (:data:`END_SLOTS`,), the hang-off's
+#: position top0 (3,) [m] and its displacement top_disp (3, nsteps + 1) [m]
+Ends = namedtuple("Ends", "conditions top0 top_disp")
 # Vectorising the node passes: they read ~25 and write ~7 separate arrays, and since
 # Numba cannot tell LLVM that the arrays do not overlap, the vectoriser guards the SIMD
 # loop with a runtime overlap check per pair of pointers; above its default limit of 8
@@ -431,7 +462,7 @@ def _rotate_3d(i, dx, dy, dz, wx, wy, wz, px, py, pz, jinv, jrot, dt, c1, c2):
 def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a2,
               b0, b1, b2, wload, mass, im, imd, jinv, jrot, kst, cseabed, mu, vfric,
               U, Uz, cdn, cdt, cdir, use_drag, qd0, qd1, qd2, use_dashpot, wair, iair, madd,
-              sband, dband, ysurf, use_surface, ql0, ql1, ql2, use_flow, pl0, pl1, pl2,
+              trib, dnode, ysurf, use_surface, ql0, ql1, ql2, use_flow, pl0, pl1, pl2,
               use_dead, dt, c, stats, R, RM):
     """Fused node pass (3D): nodal force = f[i] - f[i-1] - weight (+ seabed, + drag,
     + dead load), moment = a[i] + b[i-1]; central-difference update of the translations
@@ -450,9 +481,9 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
     length [kg/m] (cdt uses the perimeter, pi D).
     qd0..qd2 (ne,): axial dashpot forces of :func:`dashpot_pass` (statics, read only when
     use_dashpot; added after the residual is measured).
-    Sea surface (when use_surface): a node's line segment (its tributary length sband
+    Sea surface (when use_surface): a node's line segment (its tributary length trib
     (n,) [m]) is immersed by the fraction q = clip((ysurf - y) / b + 1/2, 0, 1), with b =
-    max(dband, sband |d_y|) the vertical extent of that segment (dband (n,) the outer
+    max(dnode, trib |d_y|) the vertical extent of that segment (dnode (n,) the outer
     diameter [m]): the exact fraction for a straight segment, continuous as a node
     crosses the surface (a node-wise on/off switch made the results depend on mesh and
     step). Weight wair + q (wload - wair) (wair (n,) the weight in air [N]), mass m + q
@@ -485,7 +516,7 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
         imdi = imd[i]
         wet = 1.0
         if use_surface:                   # immersed fraction of the node's segment
-            band = max(dband[i], sband[i] * abs(dy[i]))
+            band = max(dnode[i], trib[i] * abs(dy[i]))
             wet = min(max((ysurf[i] - y[i]) / band + 0.5, 0.0), 1.0)
             wi = wair[i] + wet * (wi - wair[i])
             imi = 1.0 / (mass[i] + wet * madd[i])
@@ -559,7 +590,7 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
 @njit(**_JIT)
 def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, jinv, jrot,
                  kst, cseabed, mu, vfric, U, cdn, cdt, cdir, use_drag, qd0, qd1,
-                 use_dashpot, wair, iair, madd, sband, dband, ysurf, use_surface, ql0, ql1,
+                 use_dashpot, wair, iair, madd, trib, dnode, ysurf, use_surface, ql0, ql1,
                  use_flow, pl0, pl1, use_dead, dt, c, stats, R, RM, ends, cdp, use_points):
     """Planar version of :func:`node_pass` (w (n,) rotation rate about z, a0, b0 (ne,)
     moments about z, cdir (2,) in plane, qd0, qd1 (ne,) dashpot forces, ql0, ql1 (n,)
@@ -606,7 +637,7 @@ def node_pass_2d(x, y, vx, vy, dx, dy, w, f0, f1, a0, b0, wload, mass, im, imd, 
         imdi = imd[i]
         wet = 1.0
         if use_surface:                       # see node_pass
-            band = max(dband[i], sband[i] * abs(dy[i]))
+            band = max(dnode[i], trib[i] * abs(dy[i]))
             wet = min(max((ysurf[i] - y[i]) / band + 0.5, 0.0), 1.0)
             wi = wair[i] + wet * (wi - wair[i])
             imi = 1.0 / (mass[i] + wet * madd[i])
@@ -808,8 +839,8 @@ def wave_taylor(WT, tau, WV):
 
 
 @njit(**_JIT)
-def wave_load_pass(x, y, z, vx, vy, vz, dx, dy, dz, U, Uz, cdir, cdn, cdt, cin, sband,
-                   dband, WV, P, PW):
+def wave_load_pass(x, y, z, vx, vy, vz, dx, dy, dz, U, Uz, cdir, cdn, cdt, cin, trib,
+                   dnode, WV, P, PW):
     """The Morison loads of a line in waves, per node, into PW (3, n) [N] = P (the dead
     load, zeros without one) + drag + fluid inertia; :func:`node_pass` adds PW as its dead
     load (its own drag off), so that a run without waves runs the node passes it ran
@@ -829,7 +860,7 @@ def wave_load_pass(x, y, z, vx, vy, vz, dx, dy, dz, U, Uz, cdir, cdn, cdt, cin, 
         ex = dx[i]
         ey = dy[i]
         ez = dz[i]
-        band = max(dband[i], sband[i] * abs(ey))
+        band = max(dnode[i], trib[i] * abs(ey))
         wet = min(max((WV[6, i] - y[i]) / band + 0.5, 0.0), 1.0)
         cu = U[i]
         rx = cu * cx + WV[0, i] - vx[i]
@@ -854,15 +885,15 @@ def wave_load_pass(x, y, z, vx, vy, vz, dx, dy, dz, U, Uz, cdir, cdn, cdt, cin, 
 
 # ============================================================================ driver
 @njit(**_JIT)
-def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd, jinv,
-        jrot, wload, kst, cdn, cdt, heights, speeds, slopes, cdir, use_drag, Uz, speeds_z,
-        slopes_z, turning, cseabed, mu, vfric, eta, Q, use_dashpot, wair, iair, madd,
-        sband, dband, ysurf, use_surface, use_flow, t0, fpar, fnodes, FL, P, use_dead,
-        WT, WV, cin, PW, cdir3, use_waves, ends, cdp, use_points, dt, c, top0, top_disp,
-        tol_f, tol_m, vmax):
+def run(nsteps, planar, state, line, sea, effects, scratch, flow, ends, dt, c, tol_f, tol_m,
+        vmax):
     """Advance up to ``nsteps`` explicit steps.
 
-    ends : (:data:`END_SLOTS`,) the end conditions of the planar kernels (flex joints, a
+    The arrays come grouped (:data:`State`, :data:`Line`, :data:`Sea`, :data:`Effects`,
+    :data:`Scratch`, :data:`Flow`, :data:`Ends`; named tuples, unpacked below at no cost):
+    their fields by the names used here.
+
+    ends.conditions : (:data:`END_SLOTS`,) the end conditions of the planar kernels (flex joints, a
         free anchor, a tensioner; see :func:`node_pass_2d`); a tensioned top follows the
         hang-off's motion in x and z, its reference height (slot 9) in y.
     cdp, use_points : (n,) the point attachments' isotropic drag [kg/m] (planar kernels),
@@ -881,7 +912,7 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
         turning; otherwise Uz stays zero, see :func:`node_pass`).
     eta : (ne,) axial dashpot coefficients [N s/m] and Q (k, ne) scratch for their forces,
         used only when use_dashpot (statics; see :func:`dashpot_pass`).
-    wair, iair, madd, sband, dband : (n,) weight in air [N], inverse mass [1/kg], added
+    wair, iair, madd, trib, dnode : (n,) weight in air [N], inverse mass [1/kg], added
         mass [kg], tributary length and outer diameter [m] of the nodes, for the sea surface
         at the heights ysurf (n,) [m] of the nodes, used only when use_surface (dynamics;
         see :func:`node_pass`).
@@ -910,6 +941,21 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
     Returns (steps done, force residual [N], moment residual [N m], kinetic energy [J],
     status: 0 all steps done, 1 converged, 2 blow-up).
     """
+    X, V, D, W = state.X, state.V, state.D, state.W
+    l0, kax, kb, mass, im, imd = line.l0, line.kax, line.kb, line.mass, line.im, line.imd
+    jinv, jrot, wload, kst, eta = line.jinv, line.jrot, line.wload, line.kst, line.eta
+    wair, iair, madd, trib, dnode = line.wair, line.iair, line.madd, line.trib, line.dnode
+    cin, cdn, cdt, cdp = line.cin, line.cdn, line.cdt, line.cdp
+    heights, speeds, slopes, cdir = sea.heights, sea.speeds, sea.slopes, sea.cdir
+    speeds_z, slopes_z, cdir3 = sea.speeds_z, sea.slopes_z, sea.cdir3
+    cseabed, mu, vfric, ysurf, WT, P = sea.cseabed, sea.mu, sea.vfric, sea.ysurf, sea.WT, sea.P
+    use_drag, turning, use_dashpot = effects.drag, effects.turning, effects.dashpot
+    use_surface, use_flow, use_dead = effects.surface, effects.flow, effects.dead
+    use_waves, use_points = effects.waves, effects.points
+    F, MA, MB, U, Uz, R = scratch.F, scratch.MA, scratch.MB, scratch.U, scratch.Uz, scratch.R
+    Q, FL, WV, PW = scratch.Q, scratch.FL, scratch.WV, scratch.PW
+    t0, fpar, fnodes = flow.t0, flow.fpar, flow.fnodes
+    conds, top0, top_disp = ends.conditions, ends.top0, ends.top_disp
     n = X.shape[1]
     res = 0.0
     mres = 0.0
@@ -937,20 +983,20 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
         if use_waves:
             wave_taylor(WT, k * dt, WV)
             wave_load_pass(X[0], X[1], X[2], V[0], V[1], V[2], D[0], D[1], D[2], U, Uz,
-                           cdir3, cdn, cdt, cin, sband, dband, WV, P, PW)
+                           cdir3, cdn, cdt, cin, trib, dnode, WV, P, PW)
         if use_flow:
             tk = t0 + k * dt
             if planar:
-                flow_pass_2d(tk, fpar, fnodes, sband, madd, mass, im, imd, iair,
+                flow_pass_2d(tk, fpar, fnodes, trib, madd, mass, im, imd, iair,
                              wair, wload, X[0], X[1], V[0], V[1], D[0], D[1], FL[0], FL[1],
                              FL[3], FL[4])
             else:
-                flow_pass(tk, fpar, fnodes, sband, madd, mass, im, imd, iair,
+                flow_pass(tk, fpar, fnodes, trib, madd, mass, im, imd, iair,
                           wair, wload, X[0], X[1], X[2], V[0], V[1], V[2], D[0], D[1],
                           D[2], FL[0], FL[1], FL[2], FL[3], FL[4], FL[5])
-        tensioned = ends[5] > 0.0
+        tensioned = conds[5] > 0.0
         if tensioned:
-            ends[9] = ends[8] + top_disp[1, k]
+            conds[9] = conds[8] + top_disp[1, k]
         if planar:
             element_pass_2d(X[0], X[1], D[0], D[1], l0, kax, kb, F[0], F[1], MA[0], MB[0])
             if use_dashpot:
@@ -958,10 +1004,10 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
             r2, m2, k1 = node_pass_2d(X[0], X[1], V[0], V[1], D[0], D[1], Wz, F[0], F[1],
                                       MA[0], MB[0], wload, mass, im, imd, jinv, jrot, kst,
                                       cseabed, mu, vfric, U, cdn, cdt, cdir, node_drag,
-                                      Q[0], Q[1], use_dashpot, wair, iair, madd, sband,
-                                      dband, ys, use_surface, FL[0], FL[1], use_flow,
+                                      Q[0], Q[1], use_dashpot, wair, iair, madd, trib,
+                                      dnode, ys, use_surface, FL[0], FL[1], use_flow,
                                       load[0], load[1], use_load, dt, c, stats, R[0], R[1],
-                                      ends, cdp, use_points)
+                                      conds, cdp, use_points)
         else:
             element_pass(X[0], X[1], X[2], D[0], D[1], D[2], l0, kax, kb, F[0], F[1], F[2],
                          MA[0], MA[1], MA[2], MB[0], MB[1], MB[2])
@@ -972,7 +1018,7 @@ def run(nsteps, planar, X, V, D, W, F, MA, MB, U, R, l0, kax, kb, mass, im, imd,
                                    MB[0], MB[1], MB[2], wload, mass, im, imd, jinv, jrot,
                                    kst, cseabed, mu, vfric, U, Uz, cdn, cdt, cdir,
                                    node_drag, Q[0], Q[1], Q[2], use_dashpot, wair, iair,
-                                   madd, sband, dband, ys, use_surface, FL[0], FL[1],
+                                   madd, trib, dnode, ys, use_surface, FL[0], FL[1],
                                    FL[2], use_flow, load[0], load[1], load[2], use_load, dt,
                                    c, stats, R[0], R[1])
         ke = 0.5 * k1

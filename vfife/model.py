@@ -256,6 +256,28 @@ class Model:
         self.V[:] = 0.0
         self.W[:] = 0.0
 
+    # -------------------------------------------------------------- the kernel's groups
+    def kernel_groups(self, top0: np.ndarray, top_disp: np.ndarray) -> tuple:
+        """The arrays of :func:`vfife.kernels.run` in its groups (State, Line, Sea, Effects,
+        Scratch, Flow, Ends), built on each call from the attributes (an attribute may be
+        replaced between calls: a mesh sequence, a relaxation's inertia, the waves on)."""
+        K = kernels
+        return (K.State(self.X, self.V, self.D, self.W),
+                K.Line(self.l0, self.kax, self.kb, self.mass, self.im, self.imd, self.jinv,
+                       self.jrot, self.wload, self.kst, self.eta, self.wair, self.iair,
+                       self.madd, self.trib, self.dnode, self.cin, self.cdn, self.cdt,
+                       self.cdp),
+                K.Sea(self.heights, self.speeds, self.slopes,
+                      self.cdir[:2].copy() if self.planar else self.cdir, self.speeds_z,
+                      self.slopes_z, self.cdir, self.cseabed, self.mu, self.vfric,
+                      self.ysurf, self.WT, self.P),
+                K.Effects(self.use_drag, self.turning, self.use_dashpot, self.use_surface,
+                          self.use_flow, self.use_dead, self.use_waves, self.use_points),
+                K.Scratch(self.F, self.MA, self.MB, self.U, self.Uz, self.R, self.Q, self.FL,
+                          self.WV, self.PW),
+                K.Flow(self.time, self.fpar, self.fnodes),
+                K.Ends(self.ends, top0, top_disp))
+
     # -------------------------------------------------------------- stepping
     def run(self, nsteps: int, dt: float, c: float, *, top_disp: np.ndarray | None = None,
             top0: np.ndarray | None = None, tol_f: float = -1.0, tol_m: float = -1.0,
@@ -269,20 +291,7 @@ class Model:
         if top_disp is None:
             top_disp = np.zeros((3, nsteps + 1))
         top0 = self.X[:, -1].copy() if top0 is None else np.asarray(top0, float)
-        out = kernels.run(nsteps, self.planar, self.X, self.V, self.D, self.W, self.F,
-                          self.MA, self.MB, self.U, self.R, self.l0, self.kax, self.kb,
-                          self.mass, self.im, self.imd, self.jinv, self.jrot,
-                          self.wload, self.kst, self.cdn, self.cdt, self.heights,
-                          self.speeds, self.slopes,
-                          self.cdir[:2].copy() if self.planar else self.cdir, self.use_drag,
-                          self.Uz, self.speeds_z, self.slopes_z, self.turning,
-                          self.cseabed, self.mu, self.vfric,
-                          self.eta, self.Q, self.use_dashpot, self.wair, self.iair,
-                          self.madd, self.trib, self.dnode, self.ysurf, self.use_surface,
-                          self.use_flow, self.time, self.fpar, self.fnodes,
-                          self.FL, self.P, self.use_dead, self.WT, self.WV, self.cin,
-                          self.PW, self.cdir, self.use_waves, self.ends, self.cdp,
-                          self.use_points, dt, c, top0, top_disp,
+        out = kernels.run(nsteps, self.planar, *self.kernel_groups(top0, top_disp), dt, c,
                           tol_f, tol_m, vmax)
         self.steps += int(out[0])
         if self.use_flow:
