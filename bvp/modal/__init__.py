@@ -1,1 +1,2 @@
-"""Natural modes about the BVP static state: the linearised equations, the end conditions, the eigen-solver."""
+"""Natural modes about the BVP static state: the linearised equations, the end conditions,
+the eigen-solver."""

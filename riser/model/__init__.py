@@ -1,1 +1,2 @@
-"""The scene: the line, its sections, ends and attachments, the field specs and the solver settings."""
+"""The line and the scene composing it all: line types and segments, sections, ends and
+attachments, the line's plane, the solver settings and the key tables of the docs."""

@@ -1,1 +1,2 @@
-"""What acts on the line: the current and seabed, waves, the vessel and its motion, the dynamic run, internal flow."""
+"""What acts on the line: the current and seabed, waves, the vessel and its motion, the
+dynamic run, internal flow."""

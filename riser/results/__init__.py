@@ -1,1 +1,2 @@
-"""The results every method returns (profile, modes, harmonic response, dynamic result) and their validity checks."""
+"""The results every method returns (profile, modes, harmonic response, dynamic result) and
+their validity checks."""

@@ -1,1 +1,2 @@
-"""The VFIFE's linearisation about its static state (tangent stiffness and mass) and its natural modes."""
+"""The VFIFE's linearisation about its static state (tangent stiffness and mass) and its
+natural modes."""

@@ -1,1 +1,2 @@
-"""The VFIFE's static equilibrium: dynamic relaxation with mesh sequencing, Newton near equilibrium, starting shapes."""
+"""The VFIFE's static equilibrium: dynamic relaxation with mesh sequencing, Newton near
+equilibrium, starting shapes."""

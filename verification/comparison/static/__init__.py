@@ -1,1 +1,2 @@
-"""The static comparison: both methods on one scene, the agreement rows, the report and further columns."""
+"""The static comparison: both methods on one scene, the agreement rows, the report and
+further columns."""
