@@ -81,11 +81,21 @@ def after_design(solve: Callable, observes: bool = False) -> Callable:
             return solve(scene, **overrides)
         from riser.design.checks import with_design
         if observes and scene.dynamics is not None:
-            from riser.design.dynamic import DynamicDesign
             overrides = {**overrides,
-                         "observers": (*overrides.get("observers", ()), DynamicDesign(scene))}
+                         "observers": (*overrides.get("observers", ()),
+                                       *design_observers(scene))}
         return with_design(scene, solve(scene, **overrides))
     return solve_then_check
+
+
+def design_observers(scene) -> tuple:
+    """The observers a time-domain run of ``scene`` hands its recorder for the design
+    checks: a fresh :class:`riser.design.dynamic.DynamicDesign` with [design], else none
+    (also for a run continued from a checkpoint outside the registry's solve)."""
+    if scene.design is None:
+        return ()
+    from riser.design.dynamic import DynamicDesign
+    return (DynamicDesign(scene),)
 
 
 # --------------------------------------------------------------------------------- the BVP

@@ -19,7 +19,7 @@ import numpy as np
 
 from riser.errors import SolveFailed
 from riser.results.result import Status
-from verification.methods import method
+from verification.methods import design_observers, method
 from vfife.dynamics.run import DynamicsOutcome, run_dynamics
 
 from .. import harmonics
@@ -58,7 +58,8 @@ def settled_run(scene_for, period: float, ramp: int, axis: str, h: float, what: 
         vs = scene_for(settle)
         t0 = time.perf_counter()
         _, dinfo = run_dynamics(vs, v.solver_state, v.solver_state.planar, progress,
-                                checkpoint_at=(ramp + 2 * settle) * period, resume=ck)
+                                checkpoint_at=(ramp + 2 * settle) * period, resume=ck,
+                                observers=design_observers(vs))
         wall += time.perf_counter() - t0
         if dinfo["status"] is not DynamicsOutcome.OK:
             raise SolveFailed("vfife", Status.DIVERGED, f"vfife at {what}: "
