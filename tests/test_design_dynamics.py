@@ -254,3 +254,23 @@ def test_fatigue_by_two_methods_refuses_a_line_without_a_seabed():
     with pytest.raises(SceneError) as exc:
         require_fatigue(sc)
     assert exc.value.key == "seabed"
+
+
+def test_a_run_continued_from_a_checkpoint_keeps_its_design_checks():
+    # the dynamic comparison continues an unsettled VFIFE run from a checkpoint, outside
+    # the registry's solve: the same observer (verification.methods.design_observers)
+    # gives the continued run its utilisation; without it the figure is missing (the
+    # negative control), as it was after the design checks left the method
+    from verification.methods import design_observers, method
+    from vfife.dynamics.run import run_dynamics
+    sc = parse_scene(LINE + DYNAMICS)
+    first = method("vfife").solve(sc, element_length=2.0, checkpoint_at=6.0).require()
+    ck, model = first.dynamics.checkpoint, first.solver_state
+    _, with_obs = run_dynamics(sc, model, model.planar, resume=ck,
+                               observers=design_observers(sc))
+    _, without = run_dynamics(sc, model, model.planar, resume=ck)
+    u = with_obs["statistics"]["dynamic_max_utilisation"]
+    # the continued window's largest utilisation: at least the static one (the motion's
+    # increment over the static state is positive somewhere over a cycle)
+    assert math.isfinite(u) and u >= first.summary()["max_utilisation"]
+    assert "dynamic_max_utilisation" not in without["statistics"]
