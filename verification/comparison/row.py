@@ -82,6 +82,8 @@ class Row(Mapping):
     note : why a row is not judged, or what the reader should know of it.
     at_s : the arc length [m] where a difference along s is largest (reference method's
         coordinate), else None.
+    extra : further columns a protocol shows beside (the modal pair's ``plane``, ``mode``
+        and ``mac``; MoorDyn's ``moordyn_vs_vfife``), read by name.
     """
 
     quantity: str
