@@ -371,6 +371,9 @@ OPTIONS = [
     (["cost", "scr-steel"], "--repeats", "between 1 and 100", ["0", "101", "-1", "many"]),
     (["reproduce", "wang2014"], "--jobs", "between 1 and 1024", ["0", "2000", "two"]),
     (["sweep", "scr-envelope"], "--jobs", "between 1 and 1024", ["0", "-1", "1025", "1.5"]),
+    (["fatigue", "scr-steel-fatigue"], "--jobs", "between 1 and 1024", ["0", "1025", "1.5"]),
+    (["fatigue", "scr-steel-fatigue"], "--share", "> 0 and <= 1", ["0", "1.5", "nan"]),
+    (["fatigue", "scr-steel-fatigue"], "--ancf-cells", "between 0 and 100000", ["-1", "2.5"]),
 ]
 
 

@@ -102,8 +102,10 @@ def test_wang_paper_model_section_is_secondary(wang):
 def test_wang_report_and_agreement_csv(wang, tmp_path):
     write(wang, tmp_path)
     df = pd.read_csv(tmp_path / "agreement.csv")
-    # contract with other tools: the protocol's columns, then the analytic column's two
-    assert tuple(df.columns) == AGREEMENT_COLUMNS + ("analytic", "analytic_rel_diff")
+    # contract with other tools: the protocol's columns, then the analytic column's two and
+    # the ANCF's (judged: issue 46)
+    assert tuple(df.columns) == AGREEMENT_COLUMNS + ("analytic", "analytic_rel_diff", "ancf",
+                                                     "ancf_rel_diff")
     t = df.set_index("quantity")
     # rel_diff is the signed (VFIFE - BVP) / basis with the basis of the tolerance:
     # recomputed here from the profiles the solvers wrote

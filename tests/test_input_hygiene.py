@@ -193,8 +193,8 @@ def test_the_lists_cover_every_committed_report():
         files = _files(rep / name)
         assert "report.md" in files, name
         assert files <= set(names), (name, files - set(names))
-    bench = outdir.BENCH + outdir.BENCH_SWEEP + tuple(peers.peer(n).bench_file
-                                                      for n in peers.names())
+    bench = outdir.BENCH + outdir.BENCH_SWEEP + outdir.BENCH_FATIGUE + tuple(
+        peers.peer(n).bench_file for n in peers.names())
     assert _files(rep / "bench") == set(bench)
     for name, names in (("compare", outdir.COMPARE), ("cost", outdir.COST),
                         ("modes", outdir.MODES)):

@@ -2,7 +2,7 @@
 against SMYS/E, a flexible's minimum_bend_radius) on every method's static profile and
 over a dynamic run's envelope, and the dynamic run's compression and emergence, each a
 named warning saying where (s) and, for dynamics, when (t) (riser/results/validity.py,
-riser/model/sections.py; the envelope's times and submergence: vfife/dynamics/outputs.py)."""
+riser/model/sections.py; the envelope's times and submergence: riser/results/recorder.py)."""
 
 from __future__ import annotations
 

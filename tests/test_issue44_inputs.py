@@ -261,6 +261,17 @@ def test_output_interval_of_a_microsecond_is_refused_with_the_size(tmp_path, cap
     assert scene_from_dict(data).dynamics.output_samples == MAX_OUTPUT_SAMPLES
 
 
+def test_output_interval_whose_sample_count_overflows_is_refused(tmp_path, capsys):
+    """The slow fuzzer's input: output_interval = 5e-324 s (the smallest float) in a 2000 s
+    run; 2000 / 5e-324 overflows to infinity, which the sample count's int() could not
+    take (a traceback). Refused with the same line as any too-fine interval."""
+    data = load("waves/lowe-langley-case4.toml")
+    data["dynamics"].update(duration=2000.0, output_interval=5e-324)
+    line = refusal(data, tmp_path, capsys)
+    assert "dynamics.output_interval" in line and "inf output samples" in line, line
+    assert f"output_interval >= {2000.0 / (MAX_OUTPUT_SAMPLES - 1):.3g} s" in line, line
+
+
 def test_saved_states_beyond_memory_are_refused():
     """save_states on 2,001 nodes (2,000 m at 1 m) every 0.01 s for 600 s: 60,001 x 2,001
     x 88 B = 10.6 GB of states, refused naming dynamics.save_states; every 1 s (106 MB)

@@ -175,7 +175,7 @@ def _wave_comparison():
           "max_higher_harmonics": 0.02, "hang_off_envelope_ratio": 1.0, "window_drift": 0.0,
           "settle_periods": 4}
     r = SimpleNamespace(amplitude=0.25, fd_wall_s=1.0, vfife_wall_s=20.0, warnings=[],
-                        rows=[], stations=[], nonlinearity=nl, vf={})
+                        rows=[], stations=[], nonlinearity=nl, vf={}, ancf=None, ancf_rows=[])
     dc = SimpleNamespace(axis=WAVE, scene=sc, matched=sc, period=sc.waves.trains[0].period,
                          element_length=1.0, results=[r], notes=[], passed=True)
     s = np.linspace(0.0, 100.0, 5)

@@ -115,8 +115,9 @@ def test_a_unit_run_twice_writes_the_same_bytes(raw_unit, tmp_path):
         for key in stable.TIMING_NAMES:
             assert f'"{key}"' not in text and f",{key}," not in text, (name, key)
     assert rec["files"]["bvp/summary.json"]["wall_time_s"] > 0
-    assert rec["wall_s"] > 0 and len(rec["report_times_s"]) == 3   # BVP, VFIFE, analytic
-    assert ta["report.md"].decode().count(TIMED) == 3
+    # BVP, VFIFE, analytic, ANCF
+    assert rec["wall_s"] > 0 and len(rec["report_times_s"]) == 4
+    assert ta["report.md"].decode().count(TIMED) == 4
     # no staging folder is left beside the report
     assert not list(a.glob(".partial-*"))
 

@@ -13,10 +13,10 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-PACKAGES = ("riser", "bvp", "vfife", "analytic", "verification")
+PACKAGES = ("riser", "bvp", "vfife", "analytic", "ancf", "verification")
 #: package -> project packages it may import (ARCHITECTURE.md)
 ALLOWED = {"riser": set(), "bvp": {"riser"}, "vfife": {"riser"}, "analytic": {"riser"},
-           "verification": {"riser", "bvp", "vfife", "analytic"}}
+           "ancf": {"riser"}, "verification": {"riser", "bvp", "vfife", "analytic", "ancf"}}
 #: the folders of verification/ -> the folders of verification/ they may import ("core":
 #: the modules at its top, the pipeline, quantities, catalog and regression store). The
 #: runtime and the report helpers import nothing of verification; the comparison never a
@@ -60,10 +60,15 @@ CONCEPT_FORBIDDEN = {
     "vfife.dynamics": {"vfife.statics", "vfife.modal"},
     "vfife.modal": {"vfife.statics", "vfife.dynamics"},
     "vfife.statics": {"vfife.dynamics"},
+    "ancf.dynamics": {"ancf.statics"},
+    "ancf.statics": {"ancf.dynamics"},
     "verification.comparison.static": {"verification.comparison.dynamic",
                                        "verification.comparison.sea"},
     "verification.comparison.dynamic": {"verification.comparison.static",
                                         "verification.comparison.sea"},
+    "verification.comparison.nonlinear": {"verification.comparison.static",
+                                          "verification.comparison.dynamic",
+                                          "verification.comparison.sea"},
 }
 
 
@@ -184,7 +189,7 @@ def test_no_method_imports_the_design_checks():
     # (verification/methods.py: after_design); a method importing them would run them
     # inside its own solve again
     bad = [f"{a} imports {b}" for a, deps in graph().items()
-           if a.split(".")[0] in ("bvp", "vfife", "analytic")
+           if a.split(".")[0] in ("bvp", "vfife", "analytic", "ancf")
            for b in deps if b == "riser.design" or b.startswith("riser.design.")]
     assert not bad, bad
 

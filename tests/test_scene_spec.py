@@ -227,15 +227,19 @@ def expected_design(d: dict | None) -> dict | None:
         "scf": f.get("scf", 1.0), "points": f.get("points", 16),
         "thickness": f.get("thickness"),
         "design_fatigue_factor": f.get("design_fatigue_factor", 1.0),
+        "record_length": f.get("record_length"),
         "sea_states": tuple({"hs": c["hs"], "tp": c["tp"], "probability": c["probability"]}
                             for c in f.get("sea_states", []))}
-    return {"code": d.get("code", "dnv-st-f201"), "safety_class": d.get("safety_class", "normal"),
+    return {"bending_strain_limit": d.get("bending_strain_limit"),
+            "code": d.get("code", "dnv-st-f201"), "safety_class": d.get("safety_class", "normal"),
             "load_class": d.get("load_class", "operating"), "gamma_f": d.get("gamma_f", 1.1),
             "gamma_e": d.get("gamma_e", 1.3), "gamma_m": d.get("gamma_m", 1.15),
             "alpha_u": d.get("alpha_u", 0.96), "alpha_fab": d.get("alpha_fab", 1.0),
             "ovality": d.get("ovality", 0.005),
             "corrosion_allowance": d.get("corrosion_allowance", 0.0),
-            "internal_pressure": d.get("internal_pressure"), "fatigue": fatigue}
+            "storm_duration": d.get("storm_duration", 10800.0),
+            "internal_pressure": d.get("internal_pressure"), "fatigue": fatigue,
+            "design_life": d.get("design_life")}
 
 
 def _numbers(v):
@@ -286,6 +290,7 @@ def expected_line_type(name: str, t: dict) -> dict:
             "torsional_stiffness": t.get("torsional_stiffness", G * 2.0 * inertia
                                          if G is not None
                                          else EI / (1.0 + t.get("poisson_ratio", 0.3))),
+            "axial_damping": t.get("axial_damping", 0.0),
             "drag_normal": t.get("drag_normal", 1.0),
             "drag_tangential": t.get("drag_tangential", 0.0),
             "added_mass": t.get("added_mass", 1.0),
@@ -313,7 +318,8 @@ def expected_dynamics(dyn: dict) -> dict:
             "output_interval": dyn.get("output_interval", min(1.0, dyn["duration"])),
             "top_motion": motion, "damping": dyn.get("damping", 0.0),
             "statistics_start": dyn.get("statistics_start"),
-            "save_states": dyn.get("save_states", False)}
+            "save_states": dyn.get("save_states", False),
+            "stations": _numbers(dyn.get("stations"))}
 
 
 def as_data(value):
@@ -341,7 +347,7 @@ def test_builtin_scene_holds_what_its_file_says(path):
     data = tomllib.loads(path.read_text(encoding="utf-8"))
     scene = load_scene(path)
     got = as_data(scene)
-    for part in ("bvp", "analytic", "vfife"):
+    for part in ("bvp", "analytic", "vfife", "ancf"):
         table = dict(data.get(part, {}))
         table.update(table.pop("expert", {}))
         default = as_data(type(getattr(scene, part))())

@@ -287,7 +287,7 @@ def test_most_probable_maximum_of_a_gaussian_record():
     period matches Rice's Tz = 2 pi sqrt(m0 / m2) of its components (a record of ~150
     crossings counts them to ~2 %: tolerance 3 %), and the 3 h MPM is mean + std
     sqrt(2 ln(10800 / Tz)) with the record's own std and Tz (exact)."""
-    from vfife.dynamics.outputs import most_probable_maximum
+    from riser.results.recorder import most_probable_maximum
     sp = WaveSpectrum(kind="jonswap", hs=4.0, tp=10.0, components=200, seed=3)
     comp = Waves(spectrum=sp, ramp_time=0.0).components(1000.0, G, (0.0, 0.0))
     period = 2.0 * math.pi / sp.component_omegas()[1]

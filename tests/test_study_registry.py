@@ -19,13 +19,15 @@ from verification.report.markdown import fmt
 from verification.runtime import outdir
 from verification.studies import STUDIES, study
 from verification.studies import dynamics as dyn_study
+from verification.studies import nonlinear as nl_study
 
 REPORTS = Path(__file__).resolve().parents[1] / "reports"
 #: the studies whose reports are committed: not the cost study, whose numbers are this
 #: machine's timings (``stable=False``; .gitignore keeps reports/cost/ out of the tree)
 COMMITTED = tuple(n for n in STUDIES if study(n).stable)
 #: the studies with one folder per unit (scene) under reports/NAME/
-PER_UNIT = {"compare", "cost", "modes", "dynamics", "cross_current", "sea_states", "design"}
+PER_UNIT = {"compare", "cost", "modes", "dynamics", "cross_current", "sea_states", "design",
+            "nonlinear"}
 #: the verdicts a study's index row may give; pass/fail studies must pass on the committed
 #: reports (the suite's claims), the reproductions of incomplete papers only report
 VERDICTS = {
@@ -38,6 +40,7 @@ VERDICTS = {
     "sea_states": {"pass"},
     "design": {"pass", "reported"},
     "ends": {"pass"},
+    "nonlinear": {"pass"},
 }
 #: the files of a solve that only a dynamic run writes (compare: none of its scenes has one)
 DYNAMIC = {"timeseries.csv", "envelope.csv", "states.npz", "timeseries.png", "envelope.png"}
@@ -65,9 +68,17 @@ def expected_files(name: str, folder: Path) -> set[str]:
                 if not Path(f).name.startswith("transfer")}
     if name == "design":
         return set(outdir.DESIGN_UNITS[folder.name])
+    if name == "nonlinear":         # a folder per case; controls.csv where they ran
+        controlled = {f"heave-{a:g}m" for a in nl_study.HEAVE_AMPLITUDES
+                      if a not in nl_study.BORROW}
+        return {"cases.csv", "report.md"} | {
+            f"{case}/{f}" for case in outdir.NONLINEAR_CASES[folder.name]
+            for f in outdir.TIME_DOMAIN if f != "controls.csv" or case in controlled}
     if name == "dynamics":          # the static comparison, then a folder per case
-        names |= {f"{case}/{f}" for case, *_ in dyn_study.cases(folder.name)
-                  for f in dynamics_report.FILES}
+        # the ANCF's rows only in the headline cases (the scene's element length)
+        names |= {f"{case}/{f}" for case, *_, factor in dyn_study.cases(folder.name)
+                  for f in dynamics_report.FILES
+                  if f != dynamics_report.ANCF_FILE or factor == 1.0}
         if folder.name not in dyn_study.SWEEP_SCENES:
             names.discard("convergence.csv")
     elif name != "compare":
@@ -85,7 +96,7 @@ def expected_files(name: str, folder: Path) -> set[str]:
 
 
 def test_the_registry_lists_every_study_once():
-    assert len(STUDIES) == len(set(STUDIES)) == 13
+    assert len(STUDIES) == len(set(STUDIES)) == 14
     assert set(VERDICTS) == set(STUDIES) == set(outdir.STUDY_FILES)
 
 

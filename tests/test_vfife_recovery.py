@@ -16,7 +16,7 @@ from scipy.optimize import fsolve
 
 import vfife
 from riser.io.scene_file import scene_from_dict
-from vfife.dynamics.outputs import Recorder
+from vfife.dynamics.outputs import Recorder, nodal_state
 from vfife.mesh import build_mesh
 from vfife.recovery import Recovery, joint_nodes
 from vfife.solver import make_profile
@@ -153,7 +153,7 @@ def test_dynamic_recorder_reports_the_static_profile_values():
     model = r.solver_state
     prof = make_profile(model, model.scene)
     rec = Recorder(model.mesh.s, start=0.0, save_states=True, has_seabed=False)
-    rec.sample(0.0, model, 0.0, record=True)
+    rec.sample(0.0, nodal_state(model), 0.0, record=True)
     states = rec.states_arrays()
     assert np.array_equal(states["tension"][0], prof.tension)
     assert np.array_equal(states["moment"][0], prof.moment)

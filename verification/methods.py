@@ -73,18 +73,21 @@ def after_design(solve: Callable, observes: bool = False) -> Callable:
     """``solve`` followed by the design checks of its result, once: a static profile's
     columns (:func:`riser.design.checks.with_design`) and, with ``observes`` (a time
     domain whose solve takes ``observers=``), the dynamic run's samples through
-    :class:`riser.design.dynamic.DynamicDesign` watching its recorder. A scene without
-    [design] runs ``solve`` alone."""
+    :class:`riser.design.dynamic.DynamicDesign` watching its recorder; then the bend check
+    of a scene that states a bending limit, with or without [design]
+    (:func:`riser.design.bending.with_bending`: the profile's and the envelope's
+    curvatures). A scene without [design] and without a limit runs ``solve`` alone."""
     @functools.wraps(solve)
     def solve_then_check(scene, **overrides):
+        from riser.design.bending import with_bending
         if scene.design is None:
-            return solve(scene, **overrides)
+            return with_bending(scene, solve(scene, **overrides))
         from riser.design.checks import with_design
         if observes and scene.dynamics is not None:
             overrides = {**overrides,
                          "observers": (*overrides.get("observers", ()),
                                        *design_observers(scene))}
-        return with_design(scene, solve(scene, **overrides))
+        return with_bending(scene, with_design(scene, solve(scene, **overrides)))
     return solve_then_check
 
 
@@ -145,6 +148,17 @@ def _vfife_modes(scene, count=10, **kwargs):
     return solve_modes(scene, count, **kwargs)
 
 
+# -------------------------------------------------------------------------------- the ANCF
+def _ancf_solve(scene, **overrides):
+    import ancf
+    return ancf.solve(scene, **overrides)
+
+
+def _ancf_modes(scene, count=10, **kwargs):
+    from ancf.modal import solve_modes
+    return solve_modes(scene, count, **kwargs)
+
+
 # ---------------------------------------------------------------------------- the analytic
 def _analytic_solve(scene, **overrides):
     import analytic
@@ -162,6 +176,10 @@ METHODS: dict[str, Method] = {m.name: m for m in (
            fixed_ends_only=True, progress=True, time_domain=True, modes=_vfife_modes),
     Method("analytic", "extensible catenary with matched boundary layers, closed form",
            after_design(_analytic_solve)),
+    Method("ancf", "absolute nodal coordinate formulation (Liu et al. 2021), Newton statics "
+           "and implicit dynamics", after_design(_ancf_solve, observes=True),
+           overrides=("element_length", "tolerance"), fixed_ends_only=True, progress=True,
+           time_domain=True, modes=_ancf_modes),
 )}
 
 

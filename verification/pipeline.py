@@ -37,7 +37,7 @@ from riser.model.scene import (
     TopTensionEnds,
 )
 from riser.model.transform import fixed_ends_scene
-from vfife.dynamics.outputs import ARC_LENGTH_COLUMNS, ARC_LENGTH_KEYS
+from riser.results.recorder import ARC_LENGTH_COLUMNS, ARC_LENGTH_KEYS
 from verification.methods import method as method_of
 from vfife.ends import require_vfife_model
 
@@ -237,7 +237,9 @@ def _solve_converted(scene: Scene, solve, kwargs: dict, progress) -> SolveResult
     res = solve(eq.scene, **kwargs)
     info = {**res.info, "ends_conversion": eq.note}
     for key in ARC_LENGTH_KEYS:
-        if info.get(key) is not None:
+        if isinstance(info.get(key), list):          # the stations' arc lengths
+            info[key] = [v - eq.s_shift for v in info[key]]
+        elif info.get(key) is not None:
             info[key] -= eq.s_shift
     warnings = [*res.warnings, *conversion_warnings(scene, eq, res)]
     return res.replace(scene=scene.name, profile=shifted(res.profile, eq.s_shift),

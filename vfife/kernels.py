@@ -224,10 +224,12 @@ def element_pass_2d(x, y, dx_, dy_, l0, kax, kb, f0, f1, a0, b0):
 
 
 # ============================================================================ axial dashpot
-# Statics only: a dashpot per element on the elongation rate, N_d = eta (e . (v_b - v_a)),
+# A dashpot per element on the elongation rate, N_d = eta (e . (v_b - v_a)): in the statics
 # stiffness-proportional damping of the axial modes (eta = beta EA/l0, see
-# :mod:`vfife.statics.equilibrium`). A separate pass (as the drag) so that the elastic element pass and
-# the dynamics are untouched; the node pass adds its forces after measuring the
+# :mod:`vfife.statics.equilibrium`), in the dynamics the line types' internal axial
+# damping (Kelvin-Voigt, N_d = BA d(eps)/dt: eta = BA / l0, :mod:`vfife.dynamics.run`).
+# A separate pass (as the drag) so that the elastic element pass and the dynamics
+# without it are untouched; the node pass adds its forces after measuring the
 # out-of-balance force, so the residual is the elastic + external force only and the
 # dashpot, which vanishes at rest, cannot change the equilibrium.
 @njit(**_JIT)
@@ -479,7 +481,7 @@ def node_pass(x, y, z, vx, vy, vz, dx, dy, dz, wx, wy, wz, f0, f1, f2, a0, a1, a
     interpolated linearly in height. Normal part u_n = u - (u.d) d, tangential u_t = u.d;
     f = cdn |u_n| u_n + cdt |u_t| u_t d with cdn, cdt (n,) = 0.5 rho D C_D x tributary
     length [kg/m] (cdt uses the perimeter, pi D).
-    qd0..qd2 (ne,): axial dashpot forces of :func:`dashpot_pass` (statics, read only when
+    qd0..qd2 (ne,): axial dashpot forces of :func:`dashpot_pass` (read only when
     use_dashpot; added after the residual is measured).
     Sea surface (when use_surface): a node's line segment (its tributary length trib
     (n,) [m]) is immersed by the fraction q = clip((ysurf - y) / b + 1/2, 0, 1), with b =
@@ -911,7 +913,8 @@ def run(nsteps, planar, state, line, sea, effects, scratch, flow, ends, dt, c, t
         scratch for the z component at the nodes (:func:`current_pass` on them, only when
         turning; otherwise Uz stays zero, see :func:`node_pass`).
     eta : (ne,) axial dashpot coefficients [N s/m] and Q (k, ne) scratch for their forces,
-        used only when use_dashpot (statics; see :func:`dashpot_pass`).
+        used only when use_dashpot (the statics' dashpot, the dynamics' BA / l0; see
+        :func:`dashpot_pass`).
     wair, iair, madd, trib, dnode : (n,) weight in air [N], inverse mass [1/kg], added
         mass [kg], tributary length and outer diameter [m] of the nodes, for the sea surface
         at the heights ysurf (n,) [m] of the nodes, used only when use_surface (dynamics;

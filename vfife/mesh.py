@@ -35,6 +35,8 @@ class Mesh:
         submerged weight [N/m, + down], diametral rotary inertia [kg m], added mass [kg/m],
         drag coefficients 0.5 rho D C_D [kg/m2], the water of the hydrodynamic section rho
         pi D^2 / 4 [kg/m], riser.model.sections).
+    BA : (ne,) internal axial damping [N s] (the line type's ``axial_damping``: the axial
+        force gains BA d(eps)/dt in the dynamics); None is read as zeros.
     trib : (n,) tributary length of the nodes [m]; :meth:`lump` gives the other nodal
         values.
     end_springs : the rotational stiffness [N m/rad] of the flex joints at the anchor
@@ -61,8 +63,11 @@ class Mesh:
     point_mass: np.ndarray | None = None
     point_added: np.ndarray | None = None
     point_drag: np.ndarray | None = None
+    BA: np.ndarray | None = None
 
     def __post_init__(self) -> None:
+        if self.BA is None:
+            self.BA = np.zeros(len(self.l0))
         for name in ("point_weight", "point_mass", "point_added", "point_drag"):
             if getattr(self, name) is None:
                 setattr(self, name, np.zeros(len(self.s)))
@@ -98,7 +103,8 @@ def build_mesh(scene: Scene, element_length: float) -> Mesh:
     """Mesh ``scene`` with elements of at most ``element_length`` [m]."""
     props = segment_properties(scene)
     cols: dict[str, list] = {k: [] for k in ("l0", "EA", "EI", "mass_pl", "weight_pl", "rot_pl",
-                                             "added_pl", "cdn_pl", "cdt_pl", "fluid_pl")}
+                                             "added_pl", "cdn_pl", "cdt_pl", "fluid_pl",
+                                             "BA")}
     s = [0.0]
     # attachments at one point (or within 1e-6 of an element of each other) share a node:
     # a zero-length element between them has no direction (NaN) and no stable step
@@ -127,6 +133,7 @@ def build_mesh(scene: Scene, element_length: float) -> Mesh:
         cols["cdn_pl"] += [p.drag_normal_coef] * ne
         cols["cdt_pl"] += [p.drag_tangential_coef] * ne
         cols["fluid_pl"] += [p.fluid_mass] * ne
+        cols["BA"] += [p.BA] * ne
     arrays = {k: np.asarray(v, dtype=float) for k, v in cols.items()}
     s_arr = np.asarray(s)
     s_arr[-1] = props[-1].s_end

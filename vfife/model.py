@@ -149,6 +149,9 @@ class Model:
         # run unless set with :meth:`set_axial_dashpot`)
         self.eta = np.zeros(ne)
         self.use_dashpot = False
+        # the dynamics' internal axial damping (BA, :meth:`set_axial_damping`): its force
+        # is part of the axial force the results report (the statics' dashpot is not)
+        self.damped_tension = False
         self.Q = np.zeros((k, ne))
         self.steps = 0
         self._recovery: Recovery | None = None
@@ -198,6 +201,14 @@ class Model:
         the dashpot pass off."""
         self.eta = np.broadcast_to(np.asarray(eta, float), self.l0.shape).copy()
         self.use_dashpot = bool(np.any(self.eta > 0.0))
+
+    def set_axial_damping(self) -> None:
+        """The line types' internal axial damping BA [N s] (Kelvin-Voigt, dynamics): the
+        dashpot eta = BA / l0 [N s/m] per element on the elongation rate, so the axial force
+        is EA eps + BA d(eps)/dt with eps = l / l0 - 1; its force is then part of the
+        tension of :meth:`nodal_results`."""
+        self.set_axial_dashpot(self.mesh.BA / self.mesh.l0)
+        self.damped_tension = self.use_dashpot
 
     def _set_rotational_inertia(self, jrot) -> None:
         """Nodal rotational inertias [kg m2] and their inverses used by the kernels.
@@ -324,9 +335,13 @@ class Model:
         extrapolated from each side to a joint (where the weight or the section changes)
         and from the end elements to an end. Nodal moment = mean of the end moments of the
         two elements meeting there (they balance in equilibrium); curvature = moment / EI,
-        the larger side's at a joint (min EI).
+        the larger side's at a joint (min EI). With the internal axial damping
+        (:meth:`set_axial_damping`) the tension holds its force BA d(eps)/dt.
         """
         N, Ma, Mb, Q, L, S = self.element_state()
+        if self.damped_tension:        # + BA d(eps)/dt = eta e . (v_b - v_a)
+            dX = self.X[:, 1:] - self.X[:, :-1]
+            N = N + self.eta * np.sum(dX * (self.V[:, 1:] - self.V[:, :-1]), axis=0) / L
         n = self.mesh.n
         rec = self.recovery
         M = np.zeros((3, n))

@@ -14,10 +14,12 @@ M^-1/2 K M^-1/2, exact for a uniform chain):
   explicit (lagged-velocity) force, which lowers the limit of central differences to
   dt < 2 (sqrt(1 + zeta^2) - zeta) / omega with zeta = c_s / (2 m omega)
   (von Neumann analysis of v+ = v + dt (-k x - c v) / m, x+ = x + dt v+);
-- axial dashpot (statics only, eta [N s/m] per element on the elongation rate, explicit on
-  the lagged velocity): the axial zig-zag mode gets the nodal damping 2 (eta_l + eta_r)
-  [N s/m], i.e. zeta = (eta_l + eta_r) / (m_i omega_axial), and the axial limit becomes
-  2 (sqrt(1 + zeta^2) - zeta) / omega_axial (same von Neumann analysis as the contact);
+- axial dashpot (eta [N s/m] per element on the elongation rate, explicit on the lagged
+  velocity: the statics' relaxation damping, and the dynamics' internal axial damping
+  eta = BA / l0 of the line types' ``axial_damping``, Kelvin-Voigt): the axial zig-zag
+  mode gets the nodal damping 2 (eta_l + eta_r) [N s/m], i.e. zeta = (eta_l + eta_r) /
+  (m_i omega_axial), and the axial limit becomes 2 (sqrt(1 + zeta^2) - zeta) /
+  omega_axial (same von Neumann analysis as the contact);
 - Morison drag (explicit, linearised): dt < 2 m_i / (c_dn |u|) with |u| the largest
   expected relative speed.
 
@@ -70,8 +72,9 @@ def critical_steps(mesh: Mesh, *, rot_scale: float, tension: float = 0.0,
     seabed_damping : nodal contact damping [N s/m] ((n,) or scalar), as used by the
     kernels (see :attr:`vfife.model.Model.cseabed`); 'seabed' is the transverse limit
     with the contact spring and this damping on this mesh.
-    axial_damping : axial dashpot coefficients eta [N s/m] per element ((ne,) or scalar,
-    statics only); 'axial' then includes its explicit damping.
+    axial_damping : axial dashpot coefficients eta [N s/m] per element ((ne,) or scalar:
+    the statics' dashpot, the dynamics' BA / l0); 'axial' then includes its explicit
+    damping, so a large BA shortens the step instead of blowing the run up.
     mass_factor : factor on the pipe + contents mass (a slug lightens the nodes it passes,
     see :func:`vfife.flow.lightest_mass_factor`).
     """

@@ -8,6 +8,10 @@ cos theta, sn = sin theta of the static tangent; V(y) the in-plane current speed
 
 - structural damping, mass-proportional as the VFIFE's ``[dynamics] damping`` c_s [1/s]
   (the force -c_s times the inertia of the velocity): omega^2 B -> (omega^2 - i omega c_s) B;
+- the line types' internal axial damping (Kelvin-Voigt, MoorDyn's BA [N s], the axial
+  force EA eps + BA d(eps)/dt, as both time domains apply it): the strain's increment is
+  dT / (EA + i omega BA), the complex axial stiffness, so the rows of dx', dy' and dM'
+  that take dT / EA take it times EA / (EA + i omega BA) = 1 / (1 + i omega BA / EA);
 - the seabed's contact damping (a dashpot 2 zeta sqrt(k (m + m_a)) [N s/m2] beside the
   spring k where the static line lies in the seabed, zeta at most 1 as the VFIFE applies
   it): k -> k + i omega c_sb;
@@ -87,8 +91,9 @@ def equivalent_coefficients(v_n0: np.ndarray, v_t0: np.ndarray, a_n: np.ndarray,
 def in_plane(A: np.ndarray, B: np.ndarray, omega: float, c_s: float, f: dict) -> np.ndarray:
     """Complex (m, 6, 6) operator of the in-plane state [dx, dy, dtheta, dM, dF, dT] from
     the undamped (A, B) (each (m, 6, 6)) and the flow fields ``f`` at the m points
-    (theta, V, Vp, Cn, Ct, csb: the seabed dashpot, 0 off contact)."""
-    dx, dy, dth, dF, dT = 0, 1, 2, 4, 5
+    (theta, V, Vp, Cn, Ct, csb: the seabed dashpot, 0 off contact; ba_ea: the internal
+    axial damping's BA / EA [s], absent or 0 without)."""
+    dx, dy, dth, dM, dF, dT = 0, 1, 2, 3, 4, 5
     K = A + (omega ** 2 - 1j * omega * c_s) * B
     K = K.astype(complex)
     c, sn = np.cos(f["theta"]), np.sin(f["theta"])
@@ -100,6 +105,11 @@ def in_plane(A: np.ndarray, B: np.ndarray, omega: float, c_s: float, f: dict) ->
     K[:, dT, dx] += Ct * iw * c
     K[:, dT, dy] += Ct * (-Vp * c + iw * sn) + iw * f["csb"] * sn
     K[:, dT, dth] += Ct * V * sn
+    ba_ea = f.get("ba_ea")
+    if ba_ea is not None and np.any(ba_ea):    # the complex axial stiffness EA + i omega BA
+        soft = 1.0 / (1.0 + iw * ba_ea)
+        for row in (dx, dy, dM):                # dx', dy', dM' take dT / EA
+            K[:, row, dT] *= soft
     return K
 
 

@@ -49,6 +49,7 @@ from riser.physics.hang_off_motion import motion_amplitudes
 from riser.results.response import HarmonicResponse
 from riser.results.result import SolveResult, Status
 from riser.model.scene import Scene
+from riser.model.sections import segment_properties
 
 from . import equations as he
 from . import wave_loads as wl
@@ -222,7 +223,21 @@ def _fields(scene: Scene, pieces: list[Piece], s: np.ndarray, which: np.ndarray)
         V, Vp = np.zeros(s.size), np.zeros(s.size)
     vn0, vt0 = -V * np.sin(theta), V * np.cos(theta)
     return {"theta": theta, "y": y, "V": V, "Vp": Vp, "c_n": c_n, "c_t": c_t, "csb": csb,
-            "vn0": vn0, "vt0": vt0, "ft0": c_t * np.abs(vt0) * vt0}
+            "vn0": vn0, "vt0": vt0, "ft0": c_t * np.abs(vt0) * vt0,
+            "ba_ea": _damping_times(scene, pieces, s, which)}
+
+
+def _damping_times(scene: Scene, pieces: list[Piece], s: np.ndarray,
+                   which: np.ndarray) -> np.ndarray:
+    """BA / EA [s] at the points s: the line types' internal axial damping over their
+    axial stiffness (0 where the line is inextensible), the time constant of the complex
+    axial stiffness EA + i omega BA (:func:`bvp.frequency.equations.in_plane`)."""
+    props = segment_properties(scene)
+    ends = np.array([p.s_end for p in props])
+    seg = np.clip(np.searchsorted(ends, s), 0, len(props) - 1)
+    ba = np.array([p.BA for p in props])[seg]
+    inv_ea = np.array([pc.inv_EA for pc in pieces])[which]
+    return ba * inv_ea
 
 
 @dataclass

@@ -366,6 +366,12 @@ def box_modes(pieces: list[Piece], fam: Family, ends: tuple, count: int,
     sc = state_scales(pieces, fam, count)
     A = A * sc[None, None, :] / sc[None, :, None]
     Bm = Bm * sc[None, None, :] / sc[None, :, None]
+    # the end rows on the scaled states: sum c_i Y_i = sum (c_i sc_i) (Y_i / sc_i), as the
+    # refinement (bvp.modal.modes) scales them. Unscaled, a mixed row (a tensioner's, the
+    # top inclined by a current) weighed its states wrongly: ttr-steel's guess of in-plane
+    # mode 1 was 18 % off and the guess checks rejected correctly refined modes
+    ends = tuple(tuple(tuple((i, c * sc[i]) for i, c in row) for row in _rows(side))
+                 for side in ends)
     eye = np.eye(n)[None]
     hh = 0.5 * h[:, None, None]
     K = box_matrix(-eye - hh * A, eye - hh * A, ends, 1.0)

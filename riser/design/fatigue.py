@@ -10,6 +10,10 @@ in-plane normal. The wall tension's dynamic part includes the pressures' change 
 height (T_w = T_e + p_i A_i - p_e A_o at the instantaneous y): dT_w = dT_e + g (rho_w A_o
 - rho_c A_i) dy. Each station reports its worst point.
 
+The verdict (:func:`fatigue_verdict`, with ``[design] design_life``): the fatigue
+utilisation DFF x design_life / life along s, passing at most 1 (DNV-OS-F201 Sec. 5 D 500,
+DNV-RP-F204).
+
 Units: the damage of a record is dimensionless; a life is in years of
 :data:`SECONDS_PER_YEAR`; a damage rate in 1/s.
 """
@@ -42,6 +46,62 @@ def life_years(damage, seconds: float) -> np.ndarray:
     with np.errstate(divide="ignore"):
         return np.where(d > 0.0, seconds / np.where(d > 0.0, d, 1.0) / SECONDS_PER_YEAR,
                         np.inf)
+
+
+def fatigue_verdict(s, life, design_life: float, dff: float) -> dict:
+    """The fatigue verdict along the line: the life ``life`` (n,) [years] at stations
+    ``s`` (n,) [m] against the design life ``design_life`` [years] with the design fatigue
+    factor ``dff`` [-].
+
+    The criterion (DNV-OS-F201 (2010) Sec. 5 D 500, fatigue limit state, and DNV-RP-F204
+    (2010) Sec. 2: the accumulated fatigue damage over the design life times the DFF
+    shall not exceed 1, D_fat x DFF <= 1): with a constant damage rate 1 / life per year,
+    the damage over the design life is design_life / life, so the check is
+
+        fatigue_utilisation = DFF x design_life / life <= 1,
+
+    i.e. the life must reach the required life DFF x design_life (the issue's
+    "allowable"). A station without damage (life inf) has utilisation 0; a life of 0,
+    utilisation inf; a NaN life a NaN utilisation, which does not pass and ranks as the
+    worst station.
+
+    Returns ``required_life`` [years] (DFF x design_life), ``fatigue_utilisation`` (n,)
+    [-], ``fatigue_pass`` (n,) bool (utilisation <= 1), the worst station (the largest
+    utilisation; the first of equal ones): ``max_fatigue_utilisation`` [-],
+    ``max_fatigue_utilisation_s`` [m], ``worst_life`` [years] (its life), and
+    ``fatigue_verdict``: 'pass' when every station passes, else 'fail'."""
+    s = np.asarray(s, float)
+    life = np.asarray(life, float)
+    if s.shape != life.shape or life.ndim != 1 or life.size == 0:
+        raise ValueError(f"s and life must be equal 1D arrays, got {s.shape} and "
+                         f"{life.shape}")
+    required = float(design_life) * float(dff)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        u = np.where(np.isinf(life), 0.0, required / np.where(life > 0.0, life, 0.0))
+    u = np.where(np.isnan(life), np.nan, u)
+    ok = u <= 1.0                                   # NaN: False
+    k = int(np.argmax(np.where(np.isnan(u), np.inf, u)))
+    return {"required_life": required, "fatigue_utilisation": u, "fatigue_pass": ok,
+            "max_fatigue_utilisation": float(u[k]), "max_fatigue_utilisation_s": float(s[k]),
+            "worst_life": float(life[k]),
+            "fatigue_verdict": "pass" if bool(np.all(ok)) else "fail"}
+
+
+def verdict_line(verdict: dict, design_life: float, dff: float) -> str:
+    """The console line of a :func:`fatigue_verdict`: the worst station and the verdict
+    (``fatigue verdict: FAIL at s = 512.3 m: life 0.72 years < DFF 10 x design life 20
+    years = 200 years (fatigue utilisation 278)``)."""
+    v, life = verdict, verdict["worst_life"]
+    u, s, req = v["max_fatigue_utilisation"], v["max_fatigue_utilisation_s"], v["required_life"]
+    rule = f"DFF {dff:g} x design life {design_life:g} years = {req:.4g} years"
+    if v["fatigue_verdict"] == "pass" and math.isinf(life):
+        return f"fatigue verdict: PASS: no fatigue damage along the line ({rule})"
+    if v["fatigue_verdict"] == "pass":
+        return (f"fatigue verdict: PASS: the least life {life:.3g} years at s = {s:.1f} m "
+                f">= {rule} (fatigue utilisation {u:.3g})")
+    sign = "<" if u > 1.0 else "?"                  # NaN: no comparison
+    return (f"fatigue verdict: FAIL at s = {s:.1f} m: life {life:.3g} years {sign} {rule} "
+            f"(fatigue utilisation {u:.3g})")
 
 
 def time_domain(scene, s, wall_tension, moment_in, moment_out, duration: float) -> dict:

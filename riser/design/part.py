@@ -14,6 +14,11 @@ Codes (their formulas, clause by clause: :mod:`riser.design.dnv_f201`,
 - ``api-rp-2rd``: the von Mises stress against C_f C_a SMYS (API RP 2RD, 1998, Sec. 4.4,
   C_a = 2/3, C_f by the load class of its Table 2).
 
+Fatigue verdict: with ``design_life`` [years] the fatigue life along the line is checked
+against DFF x design_life (``[design.fatigue] design_fatigue_factor``;
+:func:`riser.design.fatigue.fatigue_verdict`); without it the damage and the life are
+reported and no verdict is given.
+
 Pressures (gauge, [Pa]): outside the sea's rho_w g (h - y); inside the contents' design
 pressure ``internal_pressure`` at the hang-off plus their hydrostatic head rho_c g
 (y_top - y).
@@ -87,7 +92,13 @@ class Fatigue(Part):
     thickness: float | None = spec(None, gt=0.0, le=0.5, unit="m", default_doc="the wall's",
                                    doc="thickness of the S-N curve's thickness correction")
     design_fatigue_factor: float = spec(1.0, ge=1.0, le=100.0,
-                                        doc="DFF: the allowable life is the life / DFF")
+                                        doc="DFF: the fatigue life must reach DFF x [design] "
+                                            "design_life")
+    record_length: float | None = spec(None, gt=0.0, le=604800.0, unit="s",
+                                       default_doc="one repeat period, the scene's seed",
+                                       doc="time-domain record of each sea state (riser-verify "
+                                           "fatigue): realisations of one repeat period, "
+                                           "each cell its own seeds")
     sea_states: tuple[SeaState, ...] = field(default=())
 
     def __post_init__(self) -> None:
@@ -136,6 +147,18 @@ class Design(Part):
                                            default_doc="[internal_flow] top_pressure, else 0",
                                            doc="design pressure of the contents at the "
                                                "hang-off (gauge)")
+    design_life: float | None = spec(None, gt=0.0, le=200.0, unit="years",
+                                     default_doc="not set: no fatigue verdict",
+                                     doc="service life of the fatigue verdict: the fatigue "
+                                         "life must reach design_fatigue_factor x "
+                                         "design_life")
+    bending_strain_limit: float | None = spec(None, gt=0.0, le=0.05,
+                                              default_doc="SMYS / E of each line type",
+                                              doc="allowable bending strain (OD/2) kappa "
+                                                  "of a steel wall: the bend check's limit")
+    storm_duration: float = spec(10800.0, ge=600.0, le=86400.0, unit="s",
+                                 doc="the storm of a dynamic run's most probable maxima "
+                                     "in an irregular sea (3 h)")
     fatigue: Fatigue | None = spec(None, "part", part=Fatigue, table=FATIGUE)
 
     def __post_init__(self) -> None:
@@ -227,11 +250,16 @@ def check_fatigue_sea_states(scene) -> None:
 
 def design_warnings(scene) -> list[str]:
     """Named ``ignored_input`` warnings for the [design] keys the chosen code does not
-    read (:meth:`Design.ignored_keys`); [] without [design]."""
+    read (:meth:`Design.ignored_keys`) and for a ``design_life`` without
+    ``[design.fatigue]``; [] without [design]."""
     design = scene.design
     if design is None:
         return []
     other = {k: code for code, keys in CODE_KEYS.items() for k in keys}
-    return [f"ignored_input: design.{k} = {getattr(design, k)!r} is a key of "
-            f"{other[k]}'s check; code = {design.code!r} does not use it"
-            for k in design.ignored_keys()]
+    out = [f"ignored_input: design.{k} = {getattr(design, k)!r} is a key of "
+           f"{other[k]}'s check; code = {design.code!r} does not use it"
+           for k in design.ignored_keys()]
+    if design.design_life is not None and design.fatigue is None:
+        out.append(f"ignored_input: design.design_life = {design.design_life:g} years "
+                   "needs [design.fatigue] (the S-N curve): no fatigue verdict")
+    return out

@@ -137,7 +137,9 @@ def _range_grid(reach: float, curve: SNCurve, thickness, scf: float) -> np.ndarr
     if curve.two_slopes:
         kink = curve.switch_stress / (scf * curve.thickness_factor(thickness))
         if 0.0 < kink < reach:
-            grid = np.unique(np.append(grid, kink))
+            k = int(np.searchsorted(grid, kink))    # grid is sorted: insert, not re-sort
+            if grid[k] != kink:                     # (np.unique's result, 10x faster)
+                grid = np.insert(grid, k, kink)
     return grid
 
 

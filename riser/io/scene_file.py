@@ -42,7 +42,7 @@ from ..model.scene import (
     Seabed,
     TopMotion,
 )
-from ..model.settings import AnalyticSettings, BVPSettings, VFIFESettings
+from ..model.settings import ANCFSettings, AnalyticSettings, BVPSettings, VFIFESettings
 from ..spec import specs
 from ..physics.vessel import RAOTable, Vessel
 from ..physics.waves import WaveSpectrum, WaveTrain, Waves
@@ -203,7 +203,7 @@ def scene_from_dict(data: dict, source: str = "<scene>") -> Scene:
                            if model_t.has(key)}
         model_t.finish()
     for name, cls in (("bvp", BVPSettings), ("analytic", AnalyticSettings),
-                      ("vfife", VFIFESettings)):
+                      ("vfife", VFIFESettings), ("ancf", ANCFSettings)):
         t = root.table(name)
         if t is not None:
             values[name] = _read_sub_tables(t, cls)

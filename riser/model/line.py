@@ -29,6 +29,15 @@ MODULUS = (1.0e6, 1.0e13)
 #: and Pa typed as kPa both fall outside)
 MATERIAL_STRENGTH = (1.0e7, 5.0e9)
 
+#: the largest axial (internal) damping BA [N s] (1e14: EA's own bound times 1 s)
+MAX_AXIAL_DAMPING = 1.0e14
+#: the longest time constant BA / EA [s] of the axial damping: 10 s damps every axial mode
+#: above 0.02 Hz beyond critical (a structure's is below 0.01 s: MoorDyn's default 0.8 of
+#: critical on 2.5 m segments of Lowe and Langley's jumper is 1.1 ms); N s typed as kN s
+#: on such a line stays inside, a BA typed for the wrong line type or in the wrong unit
+#: by 1e4 does not
+MAX_DAMPING_TIME = 10.0
+
 #: the largest minimum bend radius [m] (a flexible's MBR is metres; 1 km typed as mm
 #: falls outside)
 MAX_BEND_RADIUS = 1000.0
@@ -69,6 +78,11 @@ class LineType(Part):
                                       default_doc="G 2I with shear_modulus, else "
                                                   "EI / (1 + poisson_ratio)",
                                       doc="GJ")
+    axial_damping: float = spec(0.0, ge=0.0, le=MAX_AXIAL_DAMPING, unit="N s",
+                                default_doc="0 (none)",
+                                also=f"<= {MAX_DAMPING_TIME:g} s x axial_stiffness",
+                                doc="internal axial damping BA (MoorDyn's BA): the axial "
+                                    "force gains BA d(strain)/dt (Kelvin-Voigt)")
     drag_normal: float = spec(1.0, ge=0.0, le=10.0, doc="normal drag coefficient")
     drag_tangential: float = spec(0.0, ge=0.0, le=10.0, doc="tangential drag coefficient")
     added_mass: float = spec(1.0, ge=0.0, le=10.0, doc="added-mass coefficient")
@@ -90,15 +104,17 @@ class LineType(Part):
                                         le=MATERIAL_STRENGTH[1], unit="Pa",
                                         also="<= tensile_strength",
                                         doc="SMYS of the wall: [design] checks, the "
-                                            "bending_strain warning")
+                                            "bend check SMYS / E, the bending_strain "
+                                            "warning")
     tensile_strength: float | None = spec(None, gt=MATERIAL_STRENGTH[0],
                                           le=MATERIAL_STRENGTH[1], unit="Pa",
                                           doc="SMTS of the wall: DNV's check")
     minimum_bend_radius: float | None = spec(None, gt=0.0, le=MAX_BEND_RADIUS, unit="m",
                                              default_doc="not set (steel: SMYS / E)",
                                              doc="the least bend radius of a flexible "
-                                                 "pipe or cable (its datasheet's MBR): a "
-                                                 "result bent tighter carries a bend_radius "
+                                                 "pipe or cable (its datasheet's MBR): the "
+                                                 "bend check kappa x MBR "
+                                                 "(bend_utilisation), the bend_radius "
                                                  "warning")
 
     def __post_init__(self) -> None:
@@ -111,6 +127,11 @@ class LineType(Part):
         if fy is not None and fu is not None and fy > fu:
             raise error("yield_strength", f"must be <= tensile_strength {fu:g} Pa (SMYS "
                         f"above SMTS), got {fy:g}")
+        ea, ba = self.axial_stiffness, self.axial_damping
+        if ea is not None and ba > MAX_DAMPING_TIME * ea:
+            raise error("axial_damping", f"must be <= {MAX_DAMPING_TIME:g} s x axial_stiffness "
+                        f"= {MAX_DAMPING_TIME * ea:g} N s (BA / EA is the damping's time "
+                        f"constant), got {ba:g}")
         if self.contents_density > 0.0 and d is None:
             raise error("contents_density", "needs inner_diameter or wall_thickness (the "
                         "bore that holds the contents)")

@@ -23,7 +23,7 @@ from typing import Any
 
 from .attachments import Attachment, check_attachments
 from ..design.part import Design, check_design
-from ..physics.dynamics import Dynamics, TopMotion, check_output_size
+from ..physics.dynamics import Dynamics, TopMotion, check_output_size, check_stations
 from .end_checks import check_end_conditions
 from .ends import (
     END_FORMS,
@@ -39,7 +39,7 @@ from ..physics.internal_flow import InternalFlow, check_internal_flow
 from ..physics.sea_state import check_sea_state, sea_state_out_of_plane
 from .line import LineType, Segment
 from .scene_paths import replaced
-from .settings import AnalyticSettings, BVPSettings, VFIFESettings
+from .settings import ANCFSettings, AnalyticSettings, BVPSettings, VFIFESettings
 from ..spec import Spec, check, check_fields, spec
 from ..physics.vessel import Vessel
 from ..physics.waves import Waves
@@ -123,6 +123,7 @@ class Scene:
                                       default_factory=AnalyticSettings)
     vfife: VFIFESettings = spec(kind="part", part=VFIFESettings,
                                 default_factory=VFIFESettings)
+    ancf: ANCFSettings = spec(kind="part", part=ANCFSettings, default_factory=ANCFSettings)
     model: dict = field(default_factory=dict)
     source: str = "<scene>"
     #: the anchor height [m] the input gave when the scene put the anchor on the seabed
@@ -150,6 +151,7 @@ class Scene:
         self._check_top_motion()
         check_sea_state(self)
         check_output_size(self)
+        check_stations(self)
         check_design(self)
 
     def error(self, key: str, message: str) -> SceneError:

@@ -10,6 +10,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
 from .scene import Scene
 
 
@@ -21,6 +23,8 @@ class SegmentProperties:
     ----------
     s_start, s_end : arc length of the segment ends from the bottom end [m].
     EA : axial stiffness [N]; EI : bending stiffness [N m2].
+    BA : internal axial damping [N s]: the axial force gains BA d(eps)/dt, eps the axial
+        strain (Kelvin-Voigt, MoorDyn's BA); 0 none.
     mass : structural + contents mass [kg/m] (no added mass).
     rotary_inertia : polar mass moment of inertia per length of the pipe wall [kg m].
     weight : submerged weight w [N/m], positive downwards (negative = buoyant).
@@ -44,6 +48,7 @@ class SegmentProperties:
     drag_tangential_coef: float
     added_mass: float
     fluid_mass: float
+    BA: float = 0.0
 
     @property
     def length(self) -> float:
@@ -87,10 +92,19 @@ def segment_properties(scene: Scene) -> list[SegmentProperties]:
             drag_normal_coef=0.5 * rho * Dh * lt.drag_normal,
             drag_tangential_coef=0.5 * rho * math.pi * Dh * lt.drag_tangential,
             added_mass=lt.added_mass * rho * math.pi / 4.0 * Dh * Dh,
-            fluid_mass=rho * math.pi / 4.0 * Dh * Dh,
+            fluid_mass=rho * math.pi / 4.0 * Dh * Dh, BA=lt.axial_damping,
         ))
         s0 += seg.length
     return out
+
+
+def segment_index(scene: Scene, s, lengths=None):
+    """Index of the segment holding each arc length ``s`` [m] from the bottom end (a
+    station on a boundary takes the lower segment; ``lengths``: the segment lengths as
+    solved, default the scene's: a touchdown form's first segment is its suspended part)."""
+    ends = np.cumsum(lengths if lengths is not None else [g.length for g in scene.segments])
+    return np.clip(np.searchsorted(ends, np.asarray(s, float), side="left"), 0,
+                   len(ends) - 1)
 
 
 #: Young's modulus [Pa] and wall density [kg/m3] ranges in which a line type with a bore

@@ -130,3 +130,36 @@ class VFIFESettings(_Settings):
                                doc="solve the finer meshes of a statics by Newton's "
                                    "method (relaxed where seabed friction is engaged; "
                                    "false: relax every mesh of the sequence)")
+
+
+@dataclass(frozen=True)
+class ANCFSettings(_Settings):
+    """``[ancf]``: settings of the ANCF solver (ancf/): its mesh, the Newton statics' test
+    and the implicit time integration."""
+
+    KEY_PREFIX = "ancf"
+    element_length: float = spec(2.0, gt=0.0, le=1000.0, unit="m",
+                                  doc="target element length [m] (cubic elements: several "
+                                      "times the VFIFE's for the same accuracy)")
+    gauss_points: int = spec(5, "integer", ge=3, le=12,
+                              doc="Gauss points per element (elastic forces, loads, mass)")
+    static_tolerance: float = spec(1.0e-6, gt=0.0, le=1.0e-2,
+                                    doc="Newton statics: converged when the largest nodal "
+                                        "out-of-balance force is below this fraction of the "
+                                        "load scale (see ancf/statics/newton.py)")
+    max_iterations: int = spec(200, "integer", ge=1, le=10_000,
+                                doc="Newton iterations per load step (statics) before the "
+                                    "step is halved")
+    integrator: str = spec("generalised-alpha", "string",
+                           choices=("generalised-alpha", "newmark"),
+                           doc="dynamics: generalised-alpha (Chung-Hulbert) or Newmark's "
+                               "average acceleration (Liu et al.)")
+    rho_inf: float = spec(0.8, ge=0.0, le=1.0,
+                          doc="dynamics: generalised-alpha's spectral radius at infinite "
+                              "frequency (1: no numerical damping)")
+    time_step: float | None = spec(None, gt=0.0, le=10.0, unit="s",
+                                    doc="dynamics: time step [s] (default: the excitation's "
+                                        "shortest period / steps_per_period)")
+    steps_per_period: int = spec(100, "integer", ge=8, le=100_000,
+                                  doc="dynamics: steps per period of the excitation when "
+                                      "time_step is not given")

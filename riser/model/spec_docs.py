@@ -34,7 +34,7 @@ from ..physics.internal_flow import SLUG, InternalFlow
 from .line import FILE_KEYS as LINE_TYPE_FILE_KEYS
 from .line import LineType, Segment
 from .scene import ENV, MODEL_KEYS, Scene
-from .settings import EXPERT, AnalyticSettings, BVPSettings, VFIFESettings
+from .settings import EXPERT, ANCFSettings, AnalyticSettings, BVPSettings, VFIFESettings
 from ..spec import Spec, specs
 from ..physics.vessel import RAOTable, Vessel
 from ..physics.waves import WaveSpectrum, WaveTrain, Waves
@@ -42,7 +42,7 @@ from ..physics.waves import WaveSpectrum, WaveTrain, Waves
 BEGIN = "<!-- BEGIN generated: scene keys -->"
 END = "<!-- END generated: scene keys -->"
 #: the page the block lives in (a source checkout)
-DOC = Path(__file__).resolve().parents[1] / "docs" / "scene-files.md"
+DOC = Path(__file__).resolve().parents[2] / "docs" / "scene-files.md"
 
 _TYPES = {"number": "number", "integer": "integer", "boolean": "boolean", "string": "string",
           "numbers": "array of numbers", "strings": "array of strings"}
@@ -97,6 +97,7 @@ def _tables() -> list[tuple[str, list]]:
         ("[analytic]", _rows(AnalyticSettings)),
         ("[vfife]", _rows(VFIFESettings)),
         (f"[vfife.{EXPERT}]", _rows(VFIFESettings, EXPERT)),
+        ("[ancf]", _rows(ANCFSettings)),
     ]
 
 

@@ -65,7 +65,27 @@ def fixed_ends_scene(scene: Scene, hang_off_xy, seabed_length: float, *,
     if scene.water_depth is None and current is not None:
         current = _cut_at(current, float(hang_off_xy[1]))
     return scene.replace(segments=tuple(segs), ends=ends, seabed=seabed, model={},
-                         current=current)
+                         current=current, dynamics=_shifted_stations(
+                             scene, sum(g.length for g in segs) - seabed_length,
+                             float(seabed_length)))
+
+
+def _shifted_stations(scene: Scene, suspended: float, shift: float):
+    """``scene.dynamics`` with its ``stations`` moved by ``shift`` [m] (the line added at
+    the bottom end), on the ``suspended`` length [m] from the touchdown to the hang-off
+    that the conversion keeps; a station beyond it is refused."""
+    dyn = scene.dynamics
+    if dyn is None or dyn.stations is None:
+        return dyn
+    for i, v in enumerate(dyn.stations):
+        if v > suspended * (1.0 + 1e-12):
+            raise scene.error(f"dynamics.stations[{i}]", f"must be within [0, "
+                              f"{suspended:g}] m, the line from the touchdown to the "
+                              f"hang-off the BVP solved for the {scene.ends.kind} form "
+                              f"(arc lengths s of a touchdown form are measured from its "
+                              f"touchdown), got {v:g}")
+    return dyn.replace(stations=tuple(min(v + shift, suspended + shift)
+                                      for v in dyn.stations))
 
 
 def _cut_at(current: Current, top: float) -> Current:

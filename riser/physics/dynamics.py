@@ -46,6 +46,13 @@ SAMPLE_FILE = 14 * 16
 #: and sample (position, velocity, moment vector, tension, moment), held until written
 MAX_STATES_MEMORY = 2.0e9
 STATE_BYTES = 11 * 8
+#: the most stations ``[dynamics] stations`` may name: each adds
+#: :data:`STATION_COLUMNS` columns to timeseries.csv (50 stations: 350 columns beside the
+#: run's 12 to 13)
+MAX_STATIONS = 50
+#: timeseries.csv columns of one station: tension, moment, curvature, x, y, z and, with
+#: [design], the utilisation (riser/results/recorder.py)
+STATION_COLUMNS = 7
 
 
 @dataclass(frozen=True)
@@ -307,6 +314,10 @@ class Dynamics(Part):
         shorter than the run).
     save_states : write every node's position and velocity at the output times
         (``states.npz``).
+    stations : arc lengths [m] from the bottom end (the scene's own coordinate) whose
+        tension, moment, curvature, position and, with [design], utilisation
+        timeseries.csv adds (``station_K_*``, K = 1, 2, ... in the order given:
+        :mod:`riser.results.recorder`); within the line (:func:`check_stations`).
     """
 
     duration: float = spec(gt=0.0, le=1.0e6, unit="s", doc="length of the run")
@@ -324,6 +335,13 @@ class Dynamics(Part):
     save_states: bool = spec(False, "boolean", also="at most 2 GB of states",
                              doc="write every node's state at the output times "
                                  "(states.npz)")
+    stations: tuple[float, ...] | None = spec(None, "numbers", ge=0.0, unit="m",
+                                              also="<= the line's length; at most "
+                                              f"{MAX_STATIONS}, none twice",
+                                              default_doc="none",
+                                              doc="arc lengths from the bottom end whose "
+                                                  "tension, moment, curvature, position "
+                                                  "(and utilisation) timeseries.csv adds")
 
     def __post_init__(self) -> None:
         check_fields(self)
@@ -333,7 +351,8 @@ class Dynamics(Part):
         elif self.output_interval > duration:
             raise error("output_interval", f"must be <= {duration:g} s, got "
                         f"{self.output_interval:g}")
-        samples = self.output_samples
+        samples = math.floor(duration / self.output_interval + 1e-9) + 1.0 \
+            if math.isfinite(duration / self.output_interval) else math.inf
         if samples > MAX_OUTPUT_SAMPLES:
             raise error("output_interval", f"gives {samples:.4g} output samples in "
                         f"{duration:g} s (~{_size(samples * SAMPLE_MEMORY)} of memory, "
@@ -341,6 +360,8 @@ class Dynamics(Part):
                         f"most {MAX_OUTPUT_SAMPLES:,} samples, output_interval >= "
                         f"{duration / (MAX_OUTPUT_SAMPLES - 1):.3g} s, got "
                         f"{self.output_interval:g}")
+        if self.stations is not None:
+            self._check_stations(error, samples)
         if self.statistics_start is not None and not self.statistics_start < duration:
             raise error("statistics_start", f"must be < {duration:g} s, got "
                         f"{self.statistics_start:g}")
@@ -354,6 +375,24 @@ class Dynamics(Part):
             raise error("duration", f"must be > {motion.period:g} s, the default ramp (one "
                         f"period of top_motion), got {duration:g}; or set "
                         "top_motion.ramp_time (0: no ramp)")
+
+    def _check_stations(self, error, samples: float) -> None:
+        """At most :data:`MAX_STATIONS` stations, none twice, and their time-series
+        columns within the memory of :data:`MAX_OUTPUT_SAMPLES` samples without them."""
+        n = len(self.stations)
+        if n > MAX_STATIONS:
+            raise error("stations", f"must have at most {MAX_STATIONS} entries (each adds "
+                        f"{STATION_COLUMNS} columns to timeseries.csv), got {n}")
+        for i, v in enumerate(self.stations):
+            if v in self.stations[:i]:
+                raise error(f"stations[{i}]", f"{v:g} m given twice (stations"
+                            f"[{self.stations.index(v)}])")
+        columns = SAMPLE_MEMORY // 32 + STATION_COLUMNS * n
+        if samples * columns > MAX_OUTPUT_SAMPLES * (SAMPLE_MEMORY // 32):
+            raise error("stations", f"{n} stations ({STATION_COLUMNS * n} columns) at "
+                        f"{samples:.4g} output samples are ~{_size(samples * columns * 32)} "
+                        f"of memory: must be <= {_size(MAX_OUTPUT_SAMPLES * SAMPLE_MEMORY)}; "
+                        "raise output_interval or give fewer stations")
 
     @property
     def output_samples(self) -> int:
@@ -385,6 +424,20 @@ def check_output_size(scene) -> None:
                           f"{scene.vfife.element_length:g} m) are ~{_size(size)} of states "
                           f"in memory: must be <= {_size(MAX_STATES_MEMORY)}; raise "
                           "dynamics.output_interval, or set save_states = false")
+
+
+def check_stations(scene) -> None:
+    """Each ``[dynamics] stations`` arc length within the line, [0, its length] (the
+    scene's own coordinate, from the bottom end)."""
+    dyn = scene.dynamics
+    if dyn is None or dyn.stations is None:
+        return
+    length = scene.total_length
+    for i, v in enumerate(dyn.stations):
+        if v > length:
+            raise scene.error(f"dynamics.stations[{i}]", f"must be within [0, {length:g}] m "
+                              f"(an arc length from the bottom end, the line's length "
+                              f"{length:g} m), got {v:g}")
 
 
 def _size(nbytes: float) -> str:

@@ -27,7 +27,8 @@ import numpy as np
 PROFILE_COLUMNS = ("s", "x", "y", "z", "tension", "moment", "shear", "curvature", "angle_deg")
 #: the columns a profile carries only where they apply, after PROFILE_COLUMNS in this order
 OPTIONAL_COLUMNS = ("wall_tension", "lateral", "moment_in_plane", "moment_out_of_plane",
-                    "stress_axial", "stress_bending", "stress_hoop", "von_mises", "utilisation")
+                    "stress_axial", "stress_bending", "stress_hoop", "von_mises", "utilisation",
+                    "bend_utilisation")
 
 
 @dataclass(frozen=True)
@@ -38,7 +39,10 @@ class Profile:
     ``wall_tension`` [N] is set for scenes with internal flow or a [design]; the design
     columns (``stress_axial``, ``stress_bending``, ``stress_hoop``, ``von_mises`` [Pa],
     ``utilisation`` [-]) and ``design_code`` for a scene with a [design] only
-    (:mod:`riser.design.checks`, applied after the solve: :meth:`replace`).
+    (:mod:`riser.design.checks`, applied after the solve: :meth:`replace`);
+    ``bend_utilisation`` [-] for a scene that states a bending limit
+    (:mod:`riser.design.bending`: kappa MBR, or the steel wall's (OD/2) kappa over its
+    allowable bending strain; 0 where the line type has no limit).
 
     Frozen: a method builds it once; a changed copy is :meth:`replace`'s.
     """
@@ -62,6 +66,7 @@ class Profile:
     stress_hoop: np.ndarray | None = None
     von_mises: np.ndarray | None = None
     utilisation: np.ndarray | None = None
+    bend_utilisation: np.ndarray | None = None
     design_code: str | None = None
 
     def __post_init__(self) -> None:
@@ -229,6 +234,10 @@ def summarize(profile: Profile) -> dict:
                     "max_von_mises": float(profile.von_mises[iv]),
                     "max_von_mises_s": float(s[iv]),
                     "design_passes": bool(profile.utilisation[iu] <= 1.0)})
+    if profile.bend_utilisation is not None:
+        ib = int(np.argmax(profile.bend_utilisation))
+        out.update({"max_bend_utilisation": float(profile.bend_utilisation[ib]),
+                    "max_bend_utilisation_s": float(s[ib])})
     return out
 
 

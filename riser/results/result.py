@@ -20,6 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..design.verdicts import with_verdicts
 from ..errors import SolveFailed, UnsupportedSceneError
 from .profile import Profile, summarize, write_json
 
@@ -64,7 +65,7 @@ DYNAMIC_FILES = ("timeseries.csv", "envelope.csv", "states.npz")
 class DynamicsResult:
     """Arrays of a dynamic run (VFIFE), for programmatic use; the files
     ``timeseries.csv``, ``envelope.csv`` and ``states.npz`` hold the same (columns and
-    units: :mod:`vfife.dynamics.outputs` and docs/results.md).
+    units: :mod:`riser.results.recorder` and docs/results.md).
 
     timeseries : column -> (k,) array, sampled every output interval from t = 0.
     envelope : column -> (n,) array along the line (``s`` [m]; extremes over the
@@ -181,7 +182,7 @@ class SolveResult:
         if self.profile is not None:
             out.update(summarize(self.profile))
         out.update(self.info)
-        return out
+        return with_verdicts(out)                 # design_fails: the failed checks
 
     def write(self, out_dir: str | Path) -> None:
         """Write summary.json always; profile.csv (and a dynamic run's files) only when

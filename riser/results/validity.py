@@ -44,7 +44,7 @@ from ..design.part import design_warnings
 from ..errors import SceneError
 from .profile import Profile
 from ..model.scene import Scene, TopTensionEnds
-from ..model.sections import bending_limit, segment_properties
+from ..model.sections import bending_limit, segment_index, segment_properties
 
 #: the fewest elements a VFIFE line and each of its segments may have: fewer cannot carry
 #: the catenary shape (a 2,800 m SCR in 900 m elements put its touchdown at x = 0) nor a
@@ -151,8 +151,7 @@ def nonfinite(profile: Profile) -> str | None:
 def _segment_index(scene: Scene, s: np.ndarray, lengths=None) -> np.ndarray:
     """Index of the segment holding each arc length s [m] (``lengths``: the segment
     lengths as solved, default the scene's)."""
-    ends = np.cumsum(lengths if lengths is not None else [g.length for g in scene.segments])
-    return np.clip(np.searchsorted(ends, s, side="left"), 0, len(ends) - 1)
+    return segment_index(scene, s, lengths)
 
 
 def _where(s: float) -> str:

@@ -1,10 +1,11 @@
 """The methods' bench (``riser-verify bench``, ``reports/bench/bench.json``): the VFIFE
 kernel per element-step for each effect and the solver on the Wang riser fixed at its
-hang-off (:mod:`vfife.bench`), the BVP on the Wang baseline, its Table 2 batch and its
-cost against the segment count (:mod:`bvp.bench`), and the analytic method against the
-BVP on the single-section scenes, each pair timed in the same run (speed claims are
-ratios), and the VFIFE statics' cost against the mesh with its kernel against a
-copy-only loop (:mod:`vfife.scaling`)."""
+hang-off (:mod:`vfife.bench`), the ANCF's statics and dynamic run beside it on the same
+riser and motion (:mod:`verification.bench.ancf`), the BVP on the Wang baseline, its
+Table 2 batch and its cost against the segment count (:mod:`bvp.bench`), and the analytic
+method against the BVP on the single-section scenes, each pair timed in the same run
+(speed claims are ratios), and the VFIFE statics' cost against the mesh with its kernel
+against a copy-only loop (:mod:`vfife.scaling`)."""
 
 from __future__ import annotations
 
@@ -44,13 +45,16 @@ def bench_scene() -> Scene:
 
 
 def run(out: Path) -> dict:
-    """Time the three methods; writes ``out/bench.json`` (and the VFIFE's files beside it)
+    """Time the four methods; writes ``out/bench.json`` (and the VFIFE's files beside it)
     and returns its record."""
     from analytic.bench import median_times as analytic_times
     from bvp.bench import median_times as bvp_times
     from bvp.bench import run_bench as bvp_bench
     from vfife.bench import run_bench
     bench = run_bench(out, bench_scene())
+    # the ANCF beside the VFIFE on the same riser and heave, in the same run (issue 46)
+    from .ancf import run as ancf_bench
+    bench["ancf"] = ancf_bench(bench_scene(), bench)
     bench["bvp"] = bvp_bench(resolve(WANG_BASELINE), [resolve(n) for n in WANG_CURRENTS])
     # the BVP's cost against the segment count (issue 29): same physics cut finer, and a
     # lazy wave's buoyancy as discrete modules; each solve in a fresh process
@@ -121,6 +125,9 @@ def summary_lines(bench: dict) -> list[str]:
     """The console's lines on a bench record (the VFIFE table first)."""
     from vfife.bench import format_table
     lines = [format_table(bench)]
+    if "ancf" in bench:
+        from .ancf import summary_lines as ancf_lines
+        lines.extend(ancf_lines(bench["ancf"]))
     for n, r in bench["analytic"].items():
         lines.append(f"analytic: {n} {1e3 * r['analytic_s']:.2f} ms a solve (median), BVP "
                      f"{r['bvp_s']:.3f} s: BVP / analytic = {r['bvp_over_analytic']:.0f}")

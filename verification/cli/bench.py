@@ -19,6 +19,8 @@ def cmd_bench(args) -> int:
         return _bench_peer(args, out)
     if args.sweep:
         return _bench_sweep(args, out)
+    if args.fatigue is not None:
+        return _bench_fatigue(args, out)
     from verification.bench import methods
     outdir.clear(out, outdir.BENCH)
     record = methods.run(out)
@@ -65,6 +67,30 @@ def _bench_sweep(args, out: Path) -> int:
     return 1 if failed else 0
 
 
+def _bench_fatigue(args, out: Path) -> int:
+    """``bench --fatigue [SCENE]``: OUT/fatigue.json."""
+    from verification.catalog import resolve
+    from verification.studies.design import fatigue
+    from verification.studies.design.fatigue_bench import measure, summary_lines
+    outdir.clear(out, outdir.BENCH_FATIGUE)
+    scene = resolve(args.fatigue) if args.fatigue else None
+    if scene is not None:
+        fatigue.require_fatigue(scene)
+    with progress_for(args, "bench --fatigue") as prog:
+        record = measure(scene, prog)
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "fatigue.json").write_text(json.dumps(record, indent=2) + "\n")
+    for line in summary_lines(record):
+        print(line)
+    print(f"wrote {out}/fatigue.json")
+    failed = [f"{k}: {e['error']}" for k, e in record["engines"].items() if "error" in e]
+    failed += [f"{k}: the damage along s differs from one local worker's"
+               for k, e in record["engines"].items() if e.get("identical") is False]
+    for f in failed:
+        print(f"error: bench --fatigue: {f}", file=sys.stderr)
+    return 1 if failed else 0
+
+
 def add_parsers(sub) -> None:
     s = sub.add_parser("bench", help="VFIFE kernel and solver benchmark")
     s.add_argument("--out", help="output directory (default reports/bench)")
@@ -73,4 +99,9 @@ def add_parsers(sub) -> None:
     s.add_argument("--sweep", nargs="?", const="scr-envelope", help="instead: sweep "
                    "throughput (cases per minute) with 1 and 2 local workers and a local Dask "
                    "cluster of 2 workers (sweep.json; default: the built-in sweep scr-envelope)")
+    s.add_argument("--fatigue", nargs="?", const="", metavar="SCENE", help="instead: "
+                   "fatigue throughput (units per minute) with 1 and 2 local workers and a "
+                   "local Dask cluster of 2 workers, every cell in the time domains, and "
+                   "whether their damage along s is identical (fatigue.json; default: "
+                   "scr-steel-fatigue's line on a cheap six-cell diagram)")
     s.set_defaults(func=cmd_bench)

@@ -7,6 +7,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import math
+import os
 import re
 import sys
 from dataclasses import dataclass
@@ -122,8 +123,32 @@ def check_ranges(args, skip: tuple[str, ...] = ()) -> None:
             raise SceneError("command line", flag, rng.message(_g(value)))
 
 
-#: the most worker processes --jobs accepts (sweep, reproduce)
+#: the most worker processes --jobs accepts (sweep, fatigue, reproduce)
 MAX_JOBS = 1024
+#: --jobs of ``sweep`` and ``fatigue``
+JOBS = Range(1, MAX_JOBS, integer=True, what="local worker processes")
+
+
+def jobs_of(args) -> int:
+    """The local workers of ``--jobs`` (default: this machine's cores); ``--jobs`` with
+    ``--scheduler`` is refused (SceneError naming ``--jobs``, exit 2)."""
+    if args.jobs is None:
+        return os.cpu_count() or 1
+    check_ranges(args)
+    if args.scheduler:
+        raise SceneError("command line", "--jobs", "give --jobs (local workers) or "
+                         "--scheduler (a Dask cluster's workers), not both")
+    return args.jobs
+
+
+def add_engine(parser, what: str) -> None:
+    """``--jobs N`` and ``--scheduler ADDRESS`` (the engine of ``sweep`` and ``fatigue``;
+    ``what``: the units they run, for the help)."""
+    add_ranged(parser, "--jobs", JOBS, default=None, metavar="N",
+               help="local worker processes (default: this machine's cores)")
+    parser.add_argument("--scheduler", help=f"run the {what} on a Dask cluster instead: its "
+                        "scheduler's address, tcp://host:port (the optional extra "
+                        "[cluster]); probed first: one line within seconds if it is not one")
 
 
 def _settings_ranges() -> tuple[Range, Range]:
@@ -173,6 +198,28 @@ def check_overrides(scene, args) -> None:
                 check_resolution(scene, value, source="command line", key=option)
             except SceneError as exc:             # the scene's own limits
                 raise SceneError("command line", option, exc.message) from None
+
+
+def print_verdicts(label: str, summary: dict, strict: bool) -> int:
+    """Print the design verdicts of one result (``label``: e.g. ``vfife on scr-steel``;
+    ``summary``: its summary.json keys, :mod:`riser.design.verdicts`): each failed check
+    as a ``design_fails:`` line (stdout, always), or the checks made that pass; with
+    ``--strict`` a failed check fails the run (exit code 1, said on stderr), else 0."""
+    from riser.design.verdicts import checks_made, design_failures
+    made = checks_made(summary)
+    if not made:
+        return 0
+    fails = design_failures(summary)
+    for line in fails:
+        print(f"  design_fails: {label}: {line}")
+    if not fails:
+        print(f"  design checks pass: {label}: {', '.join(made)}")
+        return 0
+    if strict:
+        err(f"{label}: {len(fails)} design check(s) fail and --strict (design_fails in "
+            "summary.json)")
+        return 1
+    return 0
 
 
 def print_warnings(res, strict: bool) -> int:

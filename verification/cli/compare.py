@@ -10,7 +10,7 @@ from verification.catalog import resolve
 from verification.runtime import outdir
 
 from .common import (ELEMENT_LENGTH, Range, add_ranged, check_overrides, check_ranges, out_folder,
-                     print_warnings, progress_for)
+                     print_verdicts, print_warnings, progress_for)
 
 #: most modes per plane the ``modes`` command computes (the BVP refines each one)
 MAX_MODES = 50
@@ -25,6 +25,8 @@ PEER_SEGMENT_LENGTH = Range(0.01, 1000.0, unit="m",
 
 
 def cmd_compare(args) -> int:
+    if getattr(args, "time_domain", False):
+        return cmd_compare_time_domain(args)
     if args.dynamics:
         return cmd_compare_dynamics(args)
     if args.amplitudes:
@@ -59,8 +61,17 @@ def cmd_compare(args) -> int:
             print(line)
     print(f"{scene.name}: {'PASS' if comp.passed else 'FAIL'}; wrote {out}/agreement.csv, "
           "report.md")
-    warned = max(print_warnings(comp.bvp, args.strict), print_warnings(comp.vfife, args.strict))
+    warned = max(print_warnings(comp.bvp, args.strict), print_warnings(comp.vfife, args.strict),
+                 _verdicts((comp.bvp, comp.vfife), args.strict))
     return 0 if comp.passed and not warned and comp.columns_ok else 1
+
+
+def _verdicts(results, strict: bool) -> int:
+    """The design verdicts of each result (:func:`print_verdicts`): 1 when one fails and
+    ``strict``."""
+    codes = [print_verdicts(f"{r.method} on {r.scene}", r.summary(), strict)
+             for r in results if r is not None and r.converged]
+    return max(codes, default=0)
 
 
 def parse_amplitudes(text: str | None) -> list[float] | None:
@@ -107,7 +118,7 @@ def cmd_compare_dynamics(args) -> int:
         comp = compare(scene, element_length=args.element_length, columns=default_columns(),
                        folder=out, paper_model=False, progress=prog)
         dc = compare_dynamics(scene, amplitudes=amplitudes, element_length=args.element_length,
-                              static=comp.bvp, progress=prog)
+                              static=comp.bvp, progress=prog, ancf=True)
         write(comp, out)
         peer_md, peer_lines = "", []
         if args.peer and peers.peer(args.peer).dynamic is not None:
@@ -118,7 +129,8 @@ def cmd_compare_dynamics(args) -> int:
         print(line)
     print(f"{scene.name} dynamics: {'PASS' if dc.passed else 'FAIL'}; wrote "
           f"{out}/dynamic_agreement.csv, report.md")
-    warned = max(print_warnings(comp.bvp, args.strict), print_warnings(comp.vfife, args.strict))
+    warned = max(print_warnings(comp.bvp, args.strict), print_warnings(comp.vfife, args.strict),
+                 _verdicts((comp.bvp, comp.vfife), args.strict))
     dyn_warned = args.strict and any(r.warnings for r in dc.results)
     return 0 if comp.passed and dc.passed and not warned and not dyn_warned else 1
 
@@ -152,8 +164,40 @@ def cmd_compare_sea(args, scene, files) -> int:
         print(line)
     print(f"{scene.name} sea: {'PASS' if sc.passed else 'FAIL'}; wrote "
           f"{out}/sea_agreement.csv, report.md")
-    warned = max(print_warnings(comp.bvp, args.strict), print_warnings(comp.vfife, args.strict))
+    warned = max(print_warnings(comp.bvp, args.strict), print_warnings(comp.vfife, args.strict),
+                 _verdicts((comp.bvp, comp.vfife, sc.vfife_result), args.strict))
     return 0 if comp.passed and sc.passed and not warned else 1
+
+
+def cmd_compare_time_domain(args) -> int:
+    """``compare SCENE --time-domain``: the VFIFE against the ANCF on the scene's own
+    [dynamics], with tolerances measured from both methods' convergence
+    (verification.comparison.nonlinear.protocol)."""
+    from verification.comparison.nonlinear import report as nl_report
+    from verification.comparison.nonlinear.protocol import check_scene, compare_time_domain
+    for flag, given in (("--dynamics", args.dynamics), ("--amplitudes", args.amplitudes),
+                        ("--peer", args.peer), ("--element-length", args.element_length),
+                        ("--no-paper-model", args.no_paper_model)):
+        if given:
+            raise SceneError("command line", flag, "not with --time-domain (it runs the "
+                             "scene's own [dynamics] at each method's [vfife]/[ancf] "
+                             "element lengths and their refinements)")
+    outdir.clear(args.out, nl_report.FILES)
+    check_ranges(args)
+    scene = resolve(args.scene)
+    check_scene(scene)                          # before solving: exit 2
+    out = out_folder(args, Path("out") / scene.name / "compare-time-domain", nl_report.FILES)
+    with progress_for(args, f"compare {scene.name} --time-domain") as prog:
+        comp = compare_time_domain(scene, progress=prog)
+        nl_report.write(comp, out)
+    for line in nl_report.console_lines(comp):
+        print(line)
+    print(f"{scene.name} time domain: {'PASS' if comp.passed else 'FAIL'}; wrote "
+          f"{out}/agreement.csv, tolerances.csv, report.md")
+    warned = max(print_warnings(comp.vfife.result, args.strict),
+                 print_warnings(comp.ancf.result, args.strict),
+                 _verdicts((comp.vfife.result, comp.ancf.result), args.strict))
+    return 0 if comp.passed and not warned else 1
 
 
 def cmd_modes(args) -> int:
@@ -163,7 +207,7 @@ def cmd_modes(args) -> int:
     scene = resolve(args.scene)
     out = out_folder(args, Path("out") / scene.name / "modes", modes.FILES)
     with progress_for(args, f"modes {scene.name}") as prog:
-        run = modes.run_modes(scene, args.count, out, progress=prog)
+        run = modes.run_modes(scene, args.count, out, progress=prog, columns=modes.COLUMNS)
     for line in modes.summary_lines(run):
         print(line)
     return 0 if run.all_meet else 1
@@ -179,7 +223,8 @@ def add_parsers(sub) -> None:
                    help="skip the secondary comparison with the BVP's paper model (inextensible "
                         "line on a rigid seabed), which is not part of the verdict")
     s.add_argument("--strict", action="store_true",
-                   help="exit 1 when either method's result carries warnings")
+                   help="exit 1 when either method's result carries warnings or fails a "
+                        "design check (design_fails)")
     s.add_argument("--peer", choices=peers.names(), help="add a peer code's profile as a "
                    "further column, not in the verdict (each peer is an optional extra: "
                    "pip install -e '.[NAME]')")
@@ -192,8 +237,14 @@ def add_parsers(sub) -> None:
     s.add_argument("--amplitudes", metavar="A,B,...",
                    help="with --dynamics: the amplitude sweep [m] (default the scene's "
                         "amplitude), e.g. 0.1,0.3,1,3")
+    s.add_argument("--time-domain", action="store_true",
+                   help="compare the VFIFE and the ANCF on the scene's own [dynamics] (time "
+                        "series, envelopes, touchdown travel, fatigue) with tolerances "
+                        "measured from both methods' convergence "
+                        "(out/SCENE/compare-time-domain)")
     s.set_defaults(func=cmd_compare)
-    s = sub.add_parser("modes", help="natural modes about the static state, both methods")
+    s = sub.add_parser("modes", help="natural modes about the static state, both methods "
+                       "(and the ANCF as a further column)")
     s.add_argument("scene", help="built-in scene name or path to a .toml scene file")
     add_ranged(s, "--count", COUNT, default=10, metavar="N",
                help="modes per plane (in-plane and out-of-plane; default 10)")

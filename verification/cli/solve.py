@@ -10,7 +10,7 @@ from verification.methods import METHODS
 from verification.runtime import outdir
 
 from .common import (ELEMENT_LENGTH, TOLERANCE, add_ranged, check_overrides, check_ranges, err,
-                     out_folder, print_warnings, progress_for)
+                     out_folder, print_verdicts, print_warnings, progress_for)
 
 
 def cmd_scenes(args) -> int:
@@ -40,7 +40,8 @@ def cmd_solve(args) -> int:
             f"{res.message}")
         return res.status.exit_code
     sm = res.summary()
-    if res.profile.utilisation is not None:
+    checked = res.profile.utilisation is not None or res.profile.bend_utilisation is not None
+    if checked:
         from verification.report.design import write_plot
         write_plot(res.profile, res.dynamics.envelope if res.dynamics else None, out,
                    f"{scene.name} [{args.method}]")
@@ -48,16 +49,23 @@ def cmd_solve(args) -> int:
     for line in summary_lines(sm, dynamic=res.dynamics is not None):
         print(line)
     if res.dynamics is None:
-        extra = ", utilisation.png" if res.profile.utilisation is not None else ""
+        extra = ", utilisation.png" if checked else ""
         print(f"  wrote {out}/profile.csv, summary.json{extra}")
-        return print_warnings(res, args.strict)
+        return _verdicts(res, sm, args.strict)
     from verification.report.dynamics import summary_lines as dynamic_lines, write_plots
-    write_plots(res.dynamics, out, f"{scene.name} [{args.method}]", sm["statistics_start"])
+    write_plots(res.dynamics, out, f"{scene.name} [{args.method}]", sm["statistics_start"],
+                plan=None if scene.is_planar else res.profile)
     for line in dynamic_lines(sm):
         print(line)
     files = [f for f in outdir.SOLVE if (out / f).exists()]
     print(f"  wrote {out}/: {', '.join(files)}")
-    return print_warnings(res, args.strict)
+    return _verdicts(res, sm, args.strict)
+
+
+def _verdicts(res, sm: dict, strict: bool) -> int:
+    """The result's warnings and design verdicts; with ``--strict`` either fails the run."""
+    warned = print_warnings(res, strict)
+    return max(warned, print_verdicts(f"{res.method} on {res.scene}", sm, strict))
 
 
 def summary_lines(sm: dict, dynamic: bool = False) -> list[str]:
@@ -81,6 +89,12 @@ def summary_lines(sm: dict, dynamic: bool = False) -> list[str]:
                      f"{length(sm['max_utilisation_s'], decimals=1)} m, max von Mises "
                      f"{sm['max_von_mises'] / 1e6:.1f} MPa"
                      + ("" if sm["design_passes"] else ": FAILS the code check"))
+    if sm.get("max_bend_utilisation") is not None:      # a bend limit on a line type
+        lines.append(f"  {'static: ' if dynamic else ''}max bend utilisation (curvature "
+                     f"against the line type's limit) {sm['max_bend_utilisation']:.4f} at s = "
+                     f"{length(sm['max_bend_utilisation_s'], decimals=1)} m"
+                     + ("" if sm["max_bend_utilisation"] <= 1.0 else
+                        ": FAILS the bend limit"))
     if sm.get("max_lateral_offset") is not None:        # a 3D scene
         off = length(sm["max_lateral_offset"], scale=_span(sm))
         mom = with_unit(sm["max_moment_out_of_plane"], "N m", decimals=3,
@@ -110,5 +124,7 @@ def add_parsers(sub) -> None:
     add_ranged(s, "--element-length", ELEMENT_LENGTH, metavar="H",
                help="vfife: element length [m]")
     s.add_argument("--strict", action="store_true",
-                   help="exit 1 when the result carries warnings (outside the model's validity)")
+                   help="exit 1 when the result carries warnings (outside the model's "
+                        "validity) or a design check fails (design_fails: the code check, "
+                        "fatigue against the design life, a bend limit)")
     s.set_defaults(func=cmd_solve)

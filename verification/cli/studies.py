@@ -85,7 +85,7 @@ def add_parsers(sub) -> None:
     s.add_argument("--out", help="output directory (default reports/NAME)")
     s.add_argument("--full", action="store_true",
                    help="the cost study's full sweep (order sweep at tight tolerances, every "
-                        "relaxation setting): 4-5 min a cost scene instead of 0.5-1")
+                        "relaxation setting): 5-7 min a cost scene instead of 1.5-2.5")
     s.set_defaults(func=cmd_reproduce)
     s = sub.add_parser("regress", help="compare every built-in scene with its stored summary")
     s.add_argument("scenes", nargs="*", help="only these built-in scenes")

@@ -3,26 +3,11 @@ methods, on this machine's cores or a Dask cluster (:mod:`verification.sweeps.ru
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
-from riser.errors import SceneError
 from verification.runtime import outdir
 
-from .common import MAX_JOBS, Range, add_ranged, check_ranges, err, progress_for
-
-#: --jobs of ``sweep``
-JOBS = Range(1, MAX_JOBS, integer=True, what="local worker processes")
-
-
-def _jobs(args) -> int:
-    if args.jobs is None:
-        return os.cpu_count() or 1
-    check_ranges(args)
-    if args.scheduler:
-        raise SceneError("command line", "--jobs", "give --jobs (local workers) or "
-                         "--scheduler (a Dask cluster's workers), not both")
-    return args.jobs
+from .common import add_engine, err, jobs_of, progress_for
 
 
 def cmd_sweep(args) -> int:
@@ -31,7 +16,7 @@ def cmd_sweep(args) -> int:
     from verification.sweeps.file import load_sweep
     from verification.sweeps.run import (OUTPUTS, Interrupted, clear_stale_cases,
                                          finished_count, run)
-    jobs = _jobs(args)
+    jobs = jobs_of(args)
     # the tables of an earlier run go first, so that a refusal leaves none behind (the
     # case folders stay: they are what a rerun resumes from)
     out = Path(args.out) if args.out else Path("out") / "sweeps" / Path(args.sweep).stem
@@ -71,8 +56,17 @@ def cmd_sweep(args) -> int:
     print(f"  {len(fails)} method run(s) without convergence, {len(bad)} case(s) where the "
           f"methods disagree, {len(warned)} result(s) with warnings"
           + (": see report.md" if fails or bad or warned else ""))
+    design = result.design_failures()
+    if result.design_checked():
+        print(f"  design checks: {len({i for i, _, _ in design})} case(s) fail "
+              + ("(design_fails: see report.md)" if design else "(every case passes)"))
+        for i, m, lines in design:
+            for line in lines:
+                print(f"  design_fails: case {i} {m}: {line}")
     print(f"  wrote {out}/: {', '.join(files)}, cases/")
-    return 1 if fails or bad or (warned and args.strict) else 0
+    if design and args.strict:
+        err(f"sweep {sweep.name}: {len(design)} result(s) fail a design check and --strict")
+    return 1 if fails or bad or ((warned or design) and args.strict) else 0
 
 
 def add_parsers(sub) -> None:
@@ -81,11 +75,8 @@ def add_parsers(sub) -> None:
     s.add_argument("sweep", help="sweep file (.toml: base, methods, [[vary]] key/values)")
     s.add_argument("--out", help="output directory (default out/sweeps/SWEEP); a rerun "
                    "into it skips the finished cases")
-    add_ranged(s, "--jobs", JOBS, default=None, metavar="N",
-               help="local worker processes (default: this machine's cores)")
-    s.add_argument("--scheduler", help="run the cases on a Dask cluster instead: its "
-                   "scheduler's address, tcp://host:port (the optional extra [cluster]); "
-                   "probed first: one line within seconds if it is not one")
+    add_engine(s, "cases")
     s.add_argument("--strict", action="store_true", help="exit 1 also when a result "
-                   "carries warnings (outside its model's validity)")
+                   "carries warnings (outside its model's validity) or fails a design check "
+                   "(design_fails)")
     s.set_defaults(func=cmd_sweep)

@@ -7,13 +7,14 @@ significant digits (the files hold SI: N, N m).
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import numpy as np
 
 from riser.results.result import DynamicsResult
 
-from .figures import new_figure, save
+from .figures import add_panel_below, new_figure, plan_view, save
 from .units import with_unit
 
 #: the figures written beside timeseries.csv and envelope.csv
@@ -44,10 +45,12 @@ def suspended_min_tension_s(ts) -> np.ndarray | None:
     return np.where(keep, s_min, np.nan)
 
 
-def write_plots(dyn: DynamicsResult, out: Path, title: str, start: float) -> None:
+def write_plots(dyn: DynamicsResult, out: Path, title: str, start: float,
+                plan=None) -> None:
     """Time series (hang-off tension, touchdown, minimum tension, peak moment, hang-off
     position) and envelopes along s into ``out``; ``start`` [s] marks the statistics
-    window's start."""
+    window's start. ``plan``: the static profile of a 3D line, whose plan view (x-z) the
+    envelopes' figure adds below them (:func:`plan_lines`); None for a planar one."""
     ts, env = dyn.timeseries, dyn.envelope
     t = ts["time"]
     suspended = suspended_min_tension_s(ts)
@@ -104,7 +107,39 @@ def write_plots(dyn: DynamicsResult, out: Path, title: str, start: float) -> Non
         a.grid(alpha=0.3)
         a.set_xlabel("arc length s from the bottom end [m]")
     fig.suptitle(f"{title}: envelopes from t = {start:g} s")
+    if plan is not None:
+        plan_view(add_panel_below(fig, 4.0), plan_lines(plan, ts))
+        fig.axes[-1].legend(fontsize=8)
     save(fig, out / "envelope.png")
+
+
+def plan_lines(profile, ts) -> list:
+    """The lines of a dynamic run's plan view: the static line (``profile``), the
+    hang-off's track and each ``[dynamics] stations`` track (``station_K_x``,
+    ``station_K_z``) over the run, (x, z, plot keywords) each."""
+    lines = [(profile.x, profile.z, {"color": "k", "lw": 1.5, "label": "static line"}),
+             (ts["hang_off_x"], ts["hang_off_z"], {"lw": 1.0, "label": "hang-off's track"})]
+    k = 1
+    while f"station_{k}_x" in ts:
+        lines.append((ts[f"station_{k}_x"], ts[f"station_{k}_z"],
+                      {"lw": 1.0, "label": "stations' tracks" if k == 1 else None,
+                       "color": "C2"}))
+        k += 1
+    return lines
+
+
+def fatigue_verdict_line(sm: dict, prefix: str = "") -> str:
+    """The fatigue verdict's console line from a summary's keys (``design_life``,
+    ``design_fatigue_factor``, ``{prefix}max_fatigue_utilisation`` and its ``_s``,
+    ``{prefix}fatigue_verdict``; :func:`riser.design.fatigue.verdict_line`)."""
+    from riser.design.fatigue import verdict_line
+    life, dff, u = sm["design_life"], sm["design_fatigue_factor"], \
+        sm[f"{prefix}max_fatigue_utilisation"]
+    worst = math.inf if u == 0.0 else dff * life / u
+    return verdict_line({"fatigue_verdict": sm[f"{prefix}fatigue_verdict"],
+                         "max_fatigue_utilisation": u, "required_life": dff * life,
+                         "max_fatigue_utilisation_s": sm[f"{prefix}max_fatigue_utilisation_s"],
+                         "worst_life": worst}, life, dff)
 
 
 def summary_lines(sm: dict) -> list[str]:
@@ -140,6 +175,8 @@ def summary_lines(sm: dict) -> list[str]:
                      f"{sm['dynamic_fatigue_record_s']:.1f} s window at s = "
                      f"{sm['dynamic_min_fatigue_life_s']:.1f} m: life "
                      f"{sm['dynamic_min_fatigue_life']:.3g} years (the window repeated)")
+    if sm.get("dynamic_fatigue_verdict") in ("pass", "fail"):
+        lines.append(f"    {fatigue_verdict_line(sm, 'dynamic_')} (the window repeated)")
     lines.append(f"    {sm['dynamic_steps']} steps of {sm['dynamic_time_step']:.3g} s, "
                  f"{sm['realtime_factor']:.3g} x real time")
     return lines

@@ -15,6 +15,32 @@ def new_figure(nrows: int = 1, ncols: int = 1, size=(8.0, 4.5)):
     return fig, axes
 
 
+def add_panel_below(fig, height: float):
+    """A new axes under the figure's column of panels (their order kept), the figure
+    taller by ``height`` [in]; the other panels keep their heights."""
+    axes = list(fig.axes)
+    w, h = fig.get_size_inches()
+    n = len(axes)
+    grid = fig.add_gridspec(n + 1, 1, height_ratios=[h / n] * n + [height])
+    for i, a in enumerate(axes):
+        a.set_subplotspec(grid[i])
+    fig.set_size_inches(w, h + height)
+    return fig.add_subplot(grid[n])
+
+
+def plan_view(ax, lines) -> None:
+    """The plan view of a 3D line on ``ax``: ``lines`` of (x, z, plot keywords), x [m]
+    across, z [m] (out of the plane x-y) down the page, as seen from above (y up: x, -z, y
+    are right-handed on the page)."""
+    for x, z, style in lines:
+        ax.plot(x, z, **style)
+    ax.invert_yaxis()
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("z [m] (seen from above)")
+    ax.set_title("plan view (x-z)", fontsize=10)
+    ax.grid(alpha=0.3)
+
+
 def save(fig, path: str | Path) -> None:
     """Write ``fig`` and close it. On a log axis spanning less than about a decade
     matplotlib labels the minor ticks too (2x10^-1, 3x10^-1, ...), and the labels run into

@@ -3,7 +3,8 @@
 :func:`local_cluster` starts a scheduler and ``workers`` single-threaded workers as
 separate processes, through the dask command line exactly as a user would on a cluster
 (``dask scheduler``, ``dask worker``), run by this Python (``python -m dask``), with
-:data:`verification.runtime.engine.WORKER_ENV` set for them (one BLAS thread each). It yields the
+:data:`verification.runtime.engine.WORKER_ENV` set for them (one BLAS thread each) and
+the nanny's malloc setting left alone (:data:`NANNY_ENV`). It yields the
 scheduler's address (``tcp://127.0.0.1:PORT``) once every worker is registered, and on
 exit stops every process it started, also when the body raised: each runs in its own
 process group (a worker's nanny and its worker process together), sent SIGTERM, then
@@ -29,6 +30,13 @@ from pathlib import Path
 from .engine import WORKER_ENV
 
 STOP_TIMEOUT_S = 10.0      # s a process is given to stop after SIGTERM, before SIGKILL
+#: the workers' nanny without Dask's default MALLOC_TRIM_THRESHOLD_=65536 (its
+#: pre-spawn-environ; None unsets it): glibc then trims the heap on every free of a 64 kB
+#: block and maps every block above 128 kB afresh, and a fatigue unit (spectral damage
+#: on grids of 8001 ranges, one array after another) ran 1.5 to 2 times slower on a
+#: Dask worker than in a local process (measured: an FD unit 8.3-9.0 s against 4.3-5.4
+#: s, 4.3-5.6 s with this). docs/sweeps.md says to start a cluster's workers so.
+NANNY_ENV = {"DASK_DISTRIBUTED__NANNY__PRE_SPAWN_ENVIRON": "{'MALLOC_TRIM_THRESHOLD_': None}"}
 LOG_TAIL = 12              # lines of its log quoted when a process did not start
 
 
@@ -73,7 +81,7 @@ def local_cluster(workers: int = 2, timeout: float = 60.0):
     import distributed  # the optional extra [cluster]
     logs = Path(tempfile.mkdtemp(prefix="riser-dask-"))
     sched_file = logs / "scheduler.json"
-    env = {**os.environ, **WORKER_ENV}
+    env = {**NANNY_ENV, **os.environ, **WORKER_ENV}
     procs: list[tuple[str, subprocess.Popen, Path]] = []
 
     def start(name: str, args: list[str]) -> None:

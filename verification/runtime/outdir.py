@@ -29,15 +29,15 @@ from riser.io.scene_file import path_problem
 SOLVE = ("profile.csv", "summary.json", "timeseries.csv", "envelope.csv", "states.npz",
          "timeseries.png", "envelope.png", "utilisation.png")
 #: ``compare`` (and each scene folder of ``reproduce compare``): the protocol's files and
-#: one solve folder per method and for the analytic column (a peer's column adds its own
+#: one solve folder per method and for the analytic and ANCF columns (a peer's column adds its own
 #: files: ``verification.peers.Peer.files``)
 COMPARE = ("agreement.csv", "report.md", "configurations.png", "forces.png", "differences.png",
-           *(f"{sub}/{name}" for sub in ("bvp", "vfife", "analytic", "bvp_paper_model")
+           *(f"{sub}/{name}" for sub in ("bvp", "vfife", "analytic", "ancf", "bvp_paper_model")
              for name in SOLVE))
 #: ``cost`` (and each scene folder of ``reproduce cost``)
 COST = ("runs.csv", "values.csv", "report.md", "error_vs_time.png",
         "error_vs_element_length.png", "time_vs_elements.png", "dynamics.csv",
-        "dynamics_error.png")
+        "dynamics_error.png", "dynamics_ancf.csv", "dynamics_ancf.png")
 #: ``modes`` (and each scene folder of ``reproduce modes``)
 MODES = ("modes.csv", "agreement.csv", "report.md", "mode_shapes_in_plane.png",
          "mode_shapes_out_of_plane.png")
@@ -52,7 +52,8 @@ SEA_STATES_UNITS = {
                                                       "jumper-vessel-wave")
                       for name in ("dynamic_agreement.csv", "stations.csv", "response.csv",
                                    "transfer.csv", "transfer_along_s.csv", "response.png",
-                                   "sweep.png", "transfer.png", "report.md")),
+                                   "sweep.png", "transfer.png", "report.md",
+                                   "dynamic_agreement_ancf.csv")),
                     *(f"jumper-sea/{name}" for name in (
                         "sea_agreement.csv", "sea_along_s.csv", "spectra.csv",
                         "sea_response.png", "spectra.png", "sea_tension.png",
@@ -64,8 +65,9 @@ DESIGN_UNITS = {
     "fatigue": ("stations.csv", "sea_states.csv", "fatigue_along_s.csv", "fatigue.png",
                 "report.md")}
 DESIGN = tuple(dict.fromkeys(f for files in DESIGN_UNITS.values() for f in files))
-#: ``fatigue SCENE``: the fatigue unit's files
-FATIGUE = DESIGN_UNITS["fatigue"]
+#: ``fatigue SCENE``: the fatigue unit's files and its summary.json (the verdict's keys);
+#: its units' records in ``cells/`` are kept (a rerun resumes from them)
+FATIGUE = DESIGN_UNITS["fatigue"] + ("summary.json",)
 #: ``reproduce ends``: the end conditions and attachments against their closed forms
 ENDS = ("closed_forms.csv", "report.md", "deflection.png", "chain_modes.png")
 #: ``stress`` and ``reproduce stress``
@@ -74,6 +76,19 @@ STRESS = ("summary.csv", "report.md")
 BENCH = ("bench.json",)
 #: ``bench --sweep``: the sweep throughput of the engines
 BENCH_SWEEP = ("sweep.json",)
+#: ``bench --fatigue``: the fatigue throughput of the engines
+BENCH_FATIGUE = ("fatigue.json",)
+#: ``compare SCENE --time-domain`` (verification.comparison.nonlinear.report.FILES)
+TIME_DOMAIN = ("agreement.csv", "tolerances.csv", "runs.csv", "controls.csv", "report.md",
+               "timeseries.png", "envelopes.png")
+#: each unit folder of ``reproduce nonlinear``: its case folders (each with
+#: :data:`TIME_DOMAIN`), ``cases.csv`` and ``report.md``; ``NONLINEAR`` all of them
+NONLINEAR_CASES = {"scr-steel-heave": ("heave-0.1m", "heave-1m", "heave-3m", "heave-6m"),
+                   "yu2021-a3-surge": ("surge",), "lowe-langley": ("case4",),
+                   "storm": ("short-record", "record")}
+NONLINEAR = ("cases.csv", "report.md") + tuple(dict.fromkeys(
+    f"{case}/{name}" for cases in NONLINEAR_CASES.values() for case in cases
+    for name in TIME_DOMAIN))
 #: the files of each study of ``reproduce`` in its folder (compare and cost: in each
 #: unit's subfolder ``NAME/SCENE``)
 STUDY_FILES = {
@@ -82,7 +97,7 @@ STUDY_FILES = {
     "yu2021": ("table.csv", "report.md", "layout.png", "gap.png", "buoyancy_loss.png",
                "current.png", "moved_up.png", "dynamics.csv", "dynamics.png"),
     "liu2021": ("table.csv", "report.md", "top_tension.png", "static.png", "moments.png",
-                "slug_length.png"),
+                "slug_length.png", "methods.csv", "methods.png"),
     "kang2015": ("table.csv", "piecewise.csv", "epsilon.csv", "report.md", "base.png",
                  "matched.png", "families.png", "epsilon.png"),
     "compare": COMPARE,
@@ -93,6 +108,7 @@ STUDY_FILES = {
     "sea_states": SEA_STATES,
     "design": DESIGN,
     "ends": ENDS,
+    "nonlinear": NONLINEAR,
     # the static comparison of each scene (without the paper model) beside its cases
     "dynamics": ("cases.csv", "convergence.csv", "report.md") + tuple(
         f for f in COMPARE if not f.startswith("bvp_paper_model/")),

@@ -31,6 +31,8 @@ import time
 
 from riser.callbacks import with_fraction
 
+from .interrupts import raise_swallowed_interrupt
+
 #: seconds between two redraws (~5 per second)
 INTERVAL = 0.2
 _SPIN = "-\\|/"
@@ -108,7 +110,10 @@ class Progress:
 
     # -- the callback ---------------------------------------------------------------
     def __call__(self, message: str, fraction: float | None = None) -> None:
-        """Set the message (and the fraction done, when known); redraw if due."""
+        """Set the message (and the fraction done, when known); redraw if due. A Ctrl-C
+        that a library swallowed on its way is raised here (the run goes on: the
+        solver reports), :func:`~verification.runtime.interrupts.raise_swallowed_interrupt`."""
+        raise_swallowed_interrupt()
         with self._lock:
             self._update(message, fraction)
             final = fraction is not None and fraction >= 1.0
@@ -319,11 +324,13 @@ class UnitTracker:
         self.start = [now if i < self.jobs else None for i in range(len(seconds))]
         self.finished: set[int] = set()
 
-    def rescale(self, seconds: float) -> None:
+    def rescale(self, seconds: float, weights: list[float] | None = None) -> None:
         """Every unit is now expected to take ``seconds`` (a measured time replacing the
-        declared ones: the sweep's first case), so that the fraction done, and the ETA
-        drawn from it, follow the real pace."""
-        self.seconds = [max(float(seconds), 1e-9)] * len(self.seconds)
+        declared ones: the sweep's first case), or ``seconds`` times its relative weight
+        (``weights``), so that the fraction done, and the ETA drawn from it, follow the
+        real pace."""
+        self.seconds = ([max(float(seconds), 1e-9)] * len(self.seconds) if weights is None
+                        else [max(float(seconds) * w, 1e-9) for w in weights])
         self.total = sum(self.seconds)
         self.known = True
 

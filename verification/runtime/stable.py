@@ -47,7 +47,7 @@ SIGNIFICANT = 6
 DYNAMIC_FILES = frozenset({
     "response.csv", "transfer.csv", "transfer_along_s.csv", "stations.csv", "spectra.csv",
     "sea_along_s.csv", "timeseries.csv", "envelope.csv", "tension.csv", "dynamics.csv",
-    "fatigue_along_s.csv", "sea_states.csv"})
+    "fatigue_along_s.csv", "sea_states.csv", "dynamics_ancf.csv"})
 DYNAMIC_SIGNIFICANT = 4
 #: the columns of those files that are places, times or inputs (6 digits: an arc length
 #: of 1999.5 m is not a response); also every column whose name ends in ``_s``
@@ -56,13 +56,16 @@ COORDINATES = frozenset({"s", "t", "omega", "hs", "tp", "probability", "amplitud
 #: a value below this fraction of the largest magnitude of its CSV column (of the numbers
 #: of its JSON object) is written as 0
 NOISE = 1e-12
-#: CSV columns and JSON keys holding a measured time [s] (wall or compile time): moved to
-#: the report's ``timings.json``. Names only: ``_s`` alone also ends arc lengths (``tdp_s``)
+#: CSV columns and JSON keys holding a measured time [s] (wall, CPU or compile time, and
+#: a dynamic run's wall or CPU seconds per simulated second): moved to the report's
+#: ``timings.json``. Names only: ``_s`` alone also ends arc lengths (``tdp_s``)
 #: and periods (``period_s``), which stay.
 TIMING_NAMES = frozenset({
     "wall_time_s", "wall_s", "compile_s", "compile_time_s", "cache_load_s", "newton_s",
-    "fd_s", "vfife_s", "bvp_s", "bvp_seconds", "fd_wall_s", "vfife_wall_s",
-    "static_wall_s", "total_wall_s", "dynamic_wall_s"})
+    "fd_s", "vfife_s", "bvp_s", "bvp_seconds", "fd_wall_s", "vfife_wall_s", "ancf_s",
+    "ancf_wall_s",
+    "static_wall_s", "total_wall_s", "dynamic_wall_s", "cpu_s", "wall_s_per_simulated_s",
+    "cpu_s_per_simulated_s"})
 
 #: absolute quanta of differences (file name -> {column: quantum}): a difference of two
 #: methods is rounded to a multiple of the quantum, not to 6 digits of itself (a
@@ -80,9 +83,12 @@ _DYNAMIC = {k: 5e-4 for k in (
     "hang_off_tension_amplitude", "tension_amplitude", "moment_amplitude",
     "displacement_amplitude", "min_tension", "higher_harmonics", "moment_out_amplitude")}
 _DYNAMIC["hang_off_tension_phase_deg"] = 5e-2
+_DYNAMIC.update({f"ancf_{k}": v for k, v in list(_DYNAMIC.items())})
 QUANTA = {
-    "agreement.csv": {"rel_diff": 1e-6, "analytic_rel_diff": 1e-6, "moordyn_rel_diff": 1e-6},
+    "agreement.csv": {"rel_diff": 1e-6, "analytic_rel_diff": 1e-6, "moordyn_rel_diff": 1e-6,
+                      "ancf_rel_diff": 1e-6},
     "dynamic_agreement.csv": {"rel_diff": 5e-4},
+    "dynamic_agreement_ancf.csv": {"rel_diff": 5e-4},
     "sea_agreement.csv": {"rel_diff": 5e-4},
     "cases.csv": _DYNAMIC, "convergence.csv": _DYNAMIC,
 }

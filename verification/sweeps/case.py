@@ -39,6 +39,10 @@ from verification.runtime.interrupts import reraise_interrupt
 SUMMARY_KEYS = ("hang_off_tension", "hang_off_angle_deg", "max_tension", "max_tension_s",
                 "min_tension", "max_moment", "max_moment_s", "max_shear", "tdp_x",
                 "tdp_tension", "span", "length", "max_lateral_offset", "max_lateral_offset_s")
+#: the design checks' summary quantities kept per method when the scene makes them
+#: ([design]'s utilisation, a line type's bend limit; riser.design.verdicts)
+DESIGN_KEYS = ("max_utilisation", "max_utilisation_s", "max_bend_utilisation",
+               "max_bend_utilisation_s")
 #: the agreement rows copied into cases.csv, besides the worst row: their rel_diff (over
 #: the row's basis), and for the touchdown its difference in metres (its tolerance is a
 #: length, not a fraction)
@@ -81,7 +85,11 @@ def _solve(scene, method: str) -> tuple[dict, object]:
     if res.converged and res.profile is not None:
         sm = summarize(res.profile)
         rec["summary"] = {k: sm.get(k) for k in SUMMARY_KEYS}
+        rec["summary"].update({k: sm[k] for k in DESIGN_KEYS if sm.get(k) is not None})
         rec["profile"] = _profile_lists(res.profile)
+        full = res.summary()
+        if "design_fails" in full:              # a design check was made (riser.design.verdicts)
+            rec["design_fails"] = list(full["design_fails"])
     return rec, res
 
 

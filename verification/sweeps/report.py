@@ -32,7 +32,7 @@ import pandas as pd
 from verification.report.figures import new_figure, save
 from verification.report.markdown import GENERATED_NOTE, fmt, md_table
 
-from .case import AGREEMENT_DIFF_KEYS, AGREEMENT_KEYS, SUMMARY_KEYS
+from .case import AGREEMENT_DIFF_KEYS, AGREEMENT_KEYS, DESIGN_KEYS, SUMMARY_KEYS
 from .run import SweepRun
 
 #: station spacing of envelopes.csv [m], and the most stations per method
@@ -57,6 +57,7 @@ def value_text(v) -> str:
 
 def cases_frame(run: SweepRun) -> pd.DataFrame:
     keys = run.sweep.keys
+    design = run.design_checked()
     rows = []
     for case, rec in zip(run.sweep.cases, run.records):
         agr = rec.get("agreement") or {}
@@ -76,6 +77,9 @@ def cases_frame(run: SweepRun) -> pd.DataFrame:
             row.update({"status": d["status"], "wall_time_s": d.get("wall_time_s")})
             row.update({k: sm.get(k) for k in SUMMARY_KEYS})
             row["warnings"] = "; ".join(d.get("warnings", []))
+            if design:
+                row.update({k: sm.get(k) for k in DESIGN_KEYS})
+                row["design_fails"] = "; ".join(d.get("design_fails") or [])
             row.update(common)
             row["message"] = d.get("message", "")
             rows.append(row)
@@ -105,6 +109,13 @@ def envelopes_frame(run: SweepRun) -> pd.DataFrame:
             inside = (s >= ps[0] - 1e-9) & (s <= ps[-1] + 1e-9)
             T[k, inside] = np.interp(s[inside], ps, np.asarray(p["tension"], float))
             M[k, inside] = np.interp(s[inside], ps, np.asarray(p["moment"], float))
+        U = None
+        if all(p.get("utilisation") is not None for _, p in profs):
+            U = np.full((len(profs), n), np.nan)
+            for k, (_, p) in enumerate(profs):
+                ps = np.asarray(p["s"], float)
+                inside = (s >= ps[0] - 1e-9) & (s <= ps[-1] + 1e-9)
+                U[k, inside] = np.interp(s[inside], ps, np.asarray(p["utilisation"], float))
         reached = np.isfinite(T).sum(axis=0)
         ok = reached > 0
         ids = np.array([i for i, _ in profs])
@@ -117,6 +128,10 @@ def envelopes_frame(run: SweepRun) -> pd.DataFrame:
                               "cases": reached[ok],
                               "tension_max_case": ids[np.argmax(fill[0][:, ok], axis=0)],
                               "moment_max_case": ids[np.argmax(fill[1][:, ok], axis=0)]})
+        if U is not None:                     # [design]: the code's utilisation against 1
+            frame["utilisation_max"] = np.nanmax(U[:, ok], axis=0)
+            frame["utilisation_max_case"] = ids[np.argmax(
+                np.where(np.isfinite(U), U, -np.inf)[:, ok], axis=0)]
         frames.append(frame)
     return pd.concat(frames, ignore_index=True) if frames else pd.DataFrame(
         columns=["method", "s", "tension_min", "tension_max", "moment_min", "moment_max",
@@ -143,6 +158,22 @@ def plots(run: SweepRun, env: pd.DataFrame, out: Path) -> None:
             ax.grid(alpha=0.3)
         axes[-1, 0].set_xlabel("arc length s from the bottom end [m]")
         save(fig, out / name)
+    if "utilisation_max" in env.columns and env["utilisation_max"].notna().any():
+        fig, axes = new_figure(len(methods), 1, size=(8.0, 2.6 + 2.4 * len(methods)))
+        for ax, method in zip(axes[:, 0], methods):
+            for _, p in _profiles(run, method):
+                if p.get("utilisation") is not None:
+                    ax.plot(p["s"], p["utilisation"], color="0.7", lw=0.6)
+            e = env[env["method"] == method]
+            ax.plot(e["s"], e["utilisation_max"], color="C3", lw=1.6, label="max")
+            ax.axhline(1.0, color="k", ls="--", lw=1.0, label="1: the code's limit")
+            ax.set_ylabel("utilisation [-]")
+            ax.set_title(f"{run.sweep.name}: {method}, utilisation of every case (grey), "
+                         "envelope", fontsize=9)
+            ax.legend(fontsize=8)
+            ax.grid(alpha=0.3)
+        axes[-1, 0].set_xlabel("arc length s from the bottom end [m]")
+        save(fig, out / "range_utilisation.png")
     fig, axes = new_figure(len(methods), 1, size=(8.0, 2.6 + 2.4 * len(methods)))
     for ax, method in zip(axes[:, 0], methods):
         for i, p in _profiles(run, method):
@@ -210,6 +241,19 @@ def report_md(run: SweepRun, cases: pd.DataFrame) -> str:
                               [(i, m, "; ".join(w).replace("|", "/")) for i, m, w in warned]))
     else:
         lines.append("No warning: every converged result is inside its model's validity.")
+    if run.design_checked():
+        lines += ["", "## Design checks", ""]
+        failing = run.design_failures()
+        if failing:
+            lines.append(f"{len({i for i, _, _ in failing})} case(s) fail a design check "
+                         "(`design_fails`; `riser-verify sweep --strict` exits 1):")
+            lines.append("")
+            lines.append(md_table(["case", "method", "design_fails", "varied values"],
+                                  [(i, m, "; ".join(f).replace("|", "/"), _given(run, i))
+                                   for i, m, f in failing]))
+        else:
+            lines.append("Every converged result passes the design checks it makes "
+                         "(the code check; a bend limit where a line type has one).")
     lines += ["", "## Files", "",
               "`cases.csv` (one row per case and method), `envelopes.csv` (min and max along s), "
               "`range_tension.png`, `range_moment.png`, `configurations.png`; each case's "
@@ -279,4 +323,5 @@ def write(run: SweepRun, out: Path) -> list[str]:
     plots(run, env, out)
     (out / "report.md").write_text(report_md(run, cases))
     return [f for f in ("cases.csv", "envelopes.csv", "range_tension.png", "range_moment.png",
-                        "configurations.png", "report.md") if (out / f).exists()]
+                        "range_utilisation.png", "configurations.png", "report.md")
+            if (out / f).exists()]

@@ -11,53 +11,21 @@ engine and raises :class:`Interrupted`, which says how many cases are written.
 
 from __future__ import annotations
 
-import contextlib
 import json
-import math
-import shutil
-import statistics
-import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from riser.results.result import Status
 from verification.runtime.engine import Engine
-from verification.runtime.interrupts import held_interrupts
-from verification.runtime.progress import UnitTracker
+from verification.runtime.units import (Interrupted, clear_stale, duration_text,  # noqa: F401
+                                        estimate_line, run_units)
 
 from .case import ERROR, case_folder, error_record, read_case, run_case, write_case
 from .file import Sweep
 
 #: the sweep's own files (``cases/`` aside), cleared before a run
 OUTPUTS = ("cases.csv", "envelopes.csv", "report.md", "range_tension.png",
-           "range_moment.png", "configurations.png")
-
-
-class Interrupted(KeyboardInterrupt):
-    """Ctrl-C while the cases ran: ``finished`` of ``total`` cases are in their folders (the
-    next run skips them); the engine's workers are stopped."""
-
-    def __init__(self, finished: int, total: int):
-        super().__init__(f"{finished} of {total} cases")
-        self.finished, self.total = finished, total
-
-
-def duration_text(seconds: float) -> str:
-    """'40 s', '12 min', '2 h 05 min'."""
-    if seconds < 90:
-        return f"{max(seconds, 1):.0f} s"
-    if seconds < 90 * 60:
-        return f"{seconds / 60:.0f} min"
-    h, m = divmod(int(seconds / 60 + 0.5), 60)
-    return f"{h} h {m:02d} min"
-
-
-def estimate_line(todo: int, workers: int, case_s: float, source: str) -> str:
-    """The wall time of ``todo`` cases of ``case_s`` seconds each on ``workers`` at once:
-    the cases run in rounds of ``workers``."""
-    w = max(1, min(workers, todo))
-    return (f"estimate: about {duration_text(math.ceil(todo / w) * case_s)} for {todo} "
-            f"case(s) on {w} worker(s) ({case_s:.1f} s a case with every method, {source})")
+           "range_moment.png", "range_utilisation.png", "configurations.png")
 
 
 def _case_seconds(records) -> list[float]:
@@ -93,6 +61,16 @@ class SweepRun:
         return [(r["index"], m, d["warnings"]) for r in self.records
                 for m, d in r["methods"].items()
                 if d["status"] == Status.CONVERGED and d.get("warnings")]
+
+    def design_checked(self) -> bool:
+        """Whether any converged result made a design check (riser.design.verdicts)."""
+        return any("design_fails" in d for r in self.records for d in r["methods"].values())
+
+    def design_failures(self) -> list[tuple[int, str, list[str]]]:
+        """(case, method, failed checks) of every result that fails a design check
+        (``design_fails``: the code check, a bend limit)."""
+        return [(r["index"], m, d["design_fails"]) for r in self.records
+                for m, d in r["methods"].items() if d.get("design_fails")]
 
     def disagreements(self) -> list[dict]:
         return [r for r in self.records
@@ -134,52 +112,28 @@ def run(sweep: Sweep, out: Path, engine: Engine, progress=None) -> SweepRun:
     resumed = len(records)
     specs = [{"index": c.index, "digest": c.digest, "scene": c.scene_dict,
               "methods": list(sweep.methods)} for c in todo]
-    workers = engine.workers()
-    earlier = _case_seconds(records.values())
-    track = UnitTracker([1.0] * len(specs), workers, what="cases", known=False)
-    if progress is not None:
-        if resumed:
-            progress.log(f"{resumed} of {len(sweep.cases)} case(s) finished by an earlier run: "
-                         "skipped")
-        if specs and earlier:
-            case_s = statistics.median(earlier)
-            progress.log(estimate_line(len(specs), workers, case_s, f"the median of the "
-                                       f"{len(earlier)} finished earlier"))
-            track.rescale(case_s)
-        elif specs:
-            progress.log(f"{len(specs)} case(s) to run on {min(workers, len(specs))} "
-                         "worker(s); the estimate of the time follows the first case")
-        progress.source = track
-    t0 = time.perf_counter()
     hosts: set[str] = set()
-    names = [f"{sweep.name}-case-{s['index']:04d}" for s in specs]
-    done: list[float] = []
-    try:
-        with contextlib.closing(engine.map(run_case, [(s,) for s in specs], progress,
-                                           names)) as results:
-            for i, res in results:
-                spec = specs[i]
-                if isinstance(res, BaseException):
-                    res = error_record(spec, f"the worker failed: {type(res).__name__}: {res}")
-                with held_interrupts():        # a case is written and counted, or not
-                    write_case(out, res, _scene_text(sweep, sweep.cases[spec["index"]]))
-                    records[spec["index"]] = read_case(out, spec["index"], spec["digest"]) \
-                        or _without_profiles(res)
-                hosts.add(str(res.get("worker", "")).split(":")[0])
-                track.done(i)
-                if progress is not None:
-                    progress.log(case_line(records[spec["index"]], len(sweep.cases)))
-                done += _case_seconds([res])
-                if len(done) == 1 and not earlier and len(specs) > 1 and progress is not None:
-                    progress.log(estimate_line(len(specs), workers, done[0], "the first case"))
-                    track.rescale(done[0])
-    except KeyboardInterrupt:
-        raise Interrupted(sum(1 for r in records.values() if "error" not in r),
-                          len(sweep.cases)) from None
-    wall = time.perf_counter() - t0
+
+    def keep(i, res):
+        spec = specs[i]
+        if isinstance(res, BaseException):
+            res = error_record(spec, f"the worker failed: {type(res).__name__}: {res}")
+        write_case(out, res, _scene_text(sweep, sweep.cases[spec["index"]]))
+        records[spec["index"]] = read_case(out, spec["index"], spec["digest"]) \
+            or _without_profiles(res)
+        hosts.add(str(res.get("worker", "")).split(":")[0])
+        seconds = _case_seconds([res])
+        return case_line(records[spec["index"]], len(sweep.cases)), \
+            (seconds[0] if seconds else None)
+
+    wall = run_units(engine, run_case, specs, keep, progress=progress,
+                     names=[f"{sweep.name}-case-{s['index']:04d}" for s in specs],
+                     earlier=_case_seconds(records.values()), resumed=resumed,
+                     total=len(sweep.cases),
+                     written=lambda: sum(1 for r in records.values() if "error" not in r))
     ordered = [records[c.index] for c in sweep.cases]
-    return SweepRun(sweep, ordered, resumed, len(specs), wall, engine.describe(), workers,
-                    sorted(h for h in hosts if h))
+    return SweepRun(sweep, ordered, resumed, len(specs), wall, engine.describe(),
+                    engine.workers(), sorted(h for h in hosts if h))
 
 
 def _scene_text(sweep: Sweep, case) -> str:
@@ -213,6 +167,4 @@ def finished_count(out: Path, sweep: Sweep) -> int:
 
 def clear_stale_cases(out: Path, count: int) -> None:
     """Remove case folders of an earlier, longer sweep in this folder (index >= count)."""
-    for folder in (out / "cases").glob("[0-9][0-9][0-9][0-9]*"):
-        if folder.is_dir() and folder.name.isdigit() and int(folder.name) >= count:
-            shutil.rmtree(folder)
+    clear_stale(Path(out) / "cases", count)

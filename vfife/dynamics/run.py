@@ -16,13 +16,16 @@ water_depth is in air: its weight in air (m g, no buoyancy), no drag and no adde
 node by node by the immersed fraction of the node's stretch of line (see
 :func:`vfife.kernels.node_pass`; effect ``sea_surface``; the summary warns when a node
 leaves the water). Damping: ``[dynamics]
-damping`` [1/s], mass-proportional (structural; default 0), on top of the drag.
+damping`` [1/s], mass-proportional (structural; default 0), on top of the drag; the line
+types' ``axial_damping`` BA [N s], the axial force's Kelvin-Voigt term BA d(eps)/dt (the
+kernels' axial dashpot, eta = BA / l0 per element, explicit on the lagged velocity; the
+critical step shrinks by sqrt(1 + zeta^2) - zeta, :mod:`vfife.timestep`).
 
 Top motion: ``top0 + d(t)`` with d(t) (3,) from :class:`riser.physics.hang_off_motion.HangOffPath`, multiplied by
 a half-cosine ramp over ``ramp_time`` (default one period of a harmonic motion: an
 impulsive start rings the line axially for the whole run).
 
-Outputs: see :mod:`vfife.dynamics.outputs` (time series every ``output_interval``,
+Outputs: see :mod:`riser.results.recorder` (time series every ``output_interval``,
 envelopes and statistics from ``statistics_start``, states on request).
 
 Checkpoints: a run can keep its complete state at a given time (:class:`Checkpoint`, a
@@ -45,7 +48,7 @@ import numpy as np
 from riser.callbacks import with_fraction
 from riser.physics.hang_off_motion import HangOffPath, scene_components
 
-from .outputs import Recorder
+from .outputs import Recorder, nodal_state
 from ..flow import lightest_mass_factor
 from ..model import Model, max_speed_hint
 from ..timestep import choose_step, critical_steps
@@ -118,7 +121,7 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None, *,
     info['checkpoint'] (a :class:`Checkpoint`; None if the run ends before). ``resume``:
     continue from that checkpoint (a run of the same scene and static state) instead of
     starting at t = 0; the time series and states then start at the checkpoint's time.
-    ``observers``: told of every sample (:class:`vfife.dynamics.outputs.Recorder`); their
+    ``observers``: told of every sample (:class:`riser.results.recorder.Recorder`); their
     columns and figures join the envelope and the statistics.
 
     Returns (model at the end, info) where info holds 'timeseries' (dict of arrays),
@@ -142,6 +145,7 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None, *,
                       waves=True)
         model.X[:] = static.X
         model.D[:] = static.D
+        model.set_axial_damping()      # the line types' BA (none: the pass stays off)
     else:
         model = copy.deepcopy(resume.model)
     tm = dyn.top_motion
@@ -162,7 +166,8 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None, *,
                            seabed_stiffness=kseabed, seabed_damping=model.cseabed,
                            drag_speed=2.0 * (max_speed_hint(scene) + wave_speed_hint(scene, comp))
                            if model.use_drag else 0.0,
-                           mass_factor=lightest_mass_factor(scene))
+                           mass_factor=lightest_mass_factor(scene),
+                           axial_damping=model.eta)
     dt, limit = choose_step(steps, vf.time_step_safety)
     if vf.time_step is not None:          # user-fixed step (may exceed the critical)
         dt, limit = float(vf.time_step), "user ([vfife] time_step)"
@@ -191,7 +196,7 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None, *,
     rec = Recorder(mesh.s, start, dyn.save_states, scene.seabed is not None,
                    elevation=elevation, irregular=bool(scene.waves is not None
                                                        and scene.waves.spectrum is not None),
-                   observers=observers)
+                   observers=observers, stations=dyn.stations)
     # what a blow-up message names as its likely cause
     cause = {"critical_steps": steps, "time_step": dt,
              "emerging": model.use_surface and not emerge}
@@ -200,7 +205,8 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None, *,
     j0 = 0 if resume is None else resume.j
     if model.use_waves:       # the kinematics of the first interval (then at each sample)
         model.waves.evaluate(model.X, j0 * env_dt)
-    rec.sample(j0 * env_dt, model, 0.0 if resume is None else resume.ke, j0 % per_out == 0)
+    rec.sample(j0 * env_dt, nodal_state(model), 0.0 if resume is None else resume.ke,
+               j0 % per_out == 0)
     status, message = DynamicsOutcome.OK, "dynamics completed"
     e0 = None if resume is None else resume.e0
     checkpoint = None
@@ -226,7 +232,7 @@ def run_dynamics(scene, static: Model, planar: bool, progress=None, *,
             # the next interval's Taylor point, evaluated here so that the recorder sees
             # the surface at the sample's time (the same calls as at each interval's start)
             model.waves.evaluate(model.X, t)
-        rec.sample(t, model, ke, (j + 1) % per_out == 0)
+        rec.sample(t, nodal_state(model), ke, (j + 1) % per_out == 0)
         if (checkpoint_at is not None and checkpoint is None
                 and t >= checkpoint_at - 0.5 * env_dt):
             checkpoint = Checkpoint(j + 1, t, copy.deepcopy(model), ke, e0)

@@ -23,6 +23,11 @@ deck keeps m (the inertia) and chooses d from the displaced area A = (m g - w) /
 d = sqrt(4 A / pi), then Cd' = Cd D_h / d, CdAx' = CdAx D_h / d, Ca' = Ca D_h^2 / d^2, so
 that weight, drag and added mass per metre equal the scene's. For a bare pipe d = D.
 
+Axial damping: a line type's ``axial_damping`` is written as its BA [N s] (MoorDyn's
+internal damping is the scene's Kelvin-Voigt term, EA eps + BA d(eps)/dt); a line type
+without it gets BA/-zeta = -``damping`` (0.8 of critical per segment by default: MoorDyn's
+numerical damping, which its statics need; a note says so).
+
 Coordinates: the scene's x -> MoorDyn X, the scene's y (up from the seabed) -> Z = y -
 WtrDpth, the scene's z -> -Y (both frames right-handed). The seabed: kBot = k / d of the
 bottom line, cBot from the damping fraction (see :mod:`riser.io.moordyn.scene_from_deck`, the exact
@@ -102,7 +107,8 @@ def _check(scene: Scene) -> None:
 
 
 def _section(scene: Scene, props, seg) -> tuple:
-    """(d, m, EA, EI, Cd, Ca, CdAx) of the equivalent MoorDyn section of one segment."""
+    """(d, m, EA, EI, Cd, Ca, CdAx, BA) of the equivalent MoorDyn section of one segment
+    (BA [N s] the line type's axial_damping, 0 without)."""
     g, rho = scene.gravity, scene.water_density
     lt = scene.line_types[seg.line_type]
     area = (props.mass * g - props.weight) / (rho * g)
@@ -114,7 +120,7 @@ def _section(scene: Scene, props, seg) -> tuple:
     d = math.sqrt(4.0 * area / math.pi)
     dh = seg.hydro_diameter or lt.hydro_diameter or lt.outer_diameter
     return (d, props.mass, props.EA, props.EI, lt.drag_normal * dh / d,
-            lt.added_mass * (dh / d) ** 2, lt.drag_tangential * dh / d)
+            lt.added_mass * (dh / d) ** 2, lt.drag_tangential * dh / d, props.BA)
 
 
 def export_scene(scene: Scene, *, segment_length: float | None = None,
@@ -130,7 +136,9 @@ def export_scene(scene: Scene, *, segment_length: float | None = None,
         profile: MoorDyn's initial guess for its free points (default: along the chord).
     hang_off : the hang-off point's attachment, 'Fixed' or 'Coupled' (driven by a caller).
     damping : the axial damping written as BA/-zeta = -damping (a fraction of critical
-        per segment; MoorDyn's damping, not the scene's, which has none in statics).
+        per segment; MoorDyn's damping, not the scene's) for a line type without
+        ``axial_damping``; one with it is written with its BA [N s] (the scene's damping,
+        which the importer reads back exactly).
     ic : overrides of :data:`IC_OPTIONS`.
     notes : lines put first among the deck's comments (e.g. how the scene was converted).
     waves : write the scene's waves (WaveKin 7 and wave_frequencies.txt,
@@ -173,9 +181,18 @@ def export_scene(scene: Scene, *, segment_length: float | None = None,
             and base not in deck.line_types else f"{base}_s{idx[0] + 1}"
         name = "".join(c if c.isalnum() or c in "_-." else "_" for c in name)
         names[sec] = name
-        d, m, EA, EI, Cd, Ca, CdAx = sec
-        deck.line_types[name] = DeckLineType(name, d, m, EA, f"{-abs(damping):g}", EI, Cd,
-                                             Ca, CdAx, 0.0)
+        d, m, EA, EI, Cd, Ca, CdAx, BA = sec
+        deck.line_types[name] = DeckLineType(name, d, m, EA,
+                                             _g(BA) if BA > 0.0 else f"{-abs(damping):g}",
+                                             EI, Cd, Ca, CdAx, 0.0)
+    if any(sec[7] > 0.0 for sec, _ in groups):
+        notes.append("BA/-zeta: a line type with axial_damping is written with it, BA [N s] "
+                     "(MoorDyn's internal axial damping, the scene's: EA eps + BA "
+                     "d(eps)/dt)" + ("; one without it with -" + f"{abs(damping):g}" +
+                                     " (a fraction of critical per segment, MoorDyn's "
+                                     "numerical damping, not the scene's)"
+                                     if any(sec[7] == 0.0 for sec, _ in groups) else "")
+                     + ".")
     # the lines: the runs of equal sections split at the attachments
     pieces, loads = _pieces(scene, props, groups, notes)
     edges = {props[idx[0]].s_start for _, idx in groups} | {props[-1].s_end}

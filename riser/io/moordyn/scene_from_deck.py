@@ -19,7 +19,9 @@ the seabed, so y = Z + WtrDpth):
 - a line type: outer_diameter = Diam (MoorDyn's volume-equivalent diameter),
   mass_per_length = Mass/m, axial_stiffness = EA, bending_stiffness = EI, drag_normal =
   Cd (on d l), drag_tangential = CdAx (on pi d l, the scene's convention too), added_mass =
-  Ca; CaAx and the VIV lift Cl have no scene key and are dropped with a note;
+  Ca, axial_damping = BA (N s; a negative BA/-zeta, a damping ratio, converted with each
+  line's segment length as MoorDyn-C converts it: :func:`axial_damping_of`); CaAx and the
+  VIV lift Cl have no scene key and are dropped with a note;
 - a free point with M, V, CdA or Ca (a clump weight, a buoy) -> an ``[[attachments]]``
   entry at its arc length s (the unstretched lengths of the lines below it; 0 at a free
   bottom end, which becomes ``[ends.anchor_joint] kind = "free"`` at its deck position,
@@ -298,13 +300,11 @@ def scene_dict(deck: Deck, name: str, current_file: Path | None,
                          "axial added mass; it affects dynamics only)")
         if lt.Cl:
             notes.append(f"line type {tname}: VIV lift Cl = {lt.Cl:g} dropped (not modelled)")
-        if lt.BA not in ("0", "0.0"):
-            notes.append(f"line type {tname}: BA/-zeta = {lt.BA} dropped (MoorDyn's internal "
-                         "axial damping, dynamics only; the scene's line has none)")
+    seg_types = _axial_damping(deck, order, data["line_types"], where, notes)
     data["segments"] = []
     for k, (i, rev) in enumerate(order):
         ln = deck.lines[i]
-        data["segments"].append({"line_type": ln.line_type, "length": ln.length,
+        data["segments"].append({"line_type": seg_types[k], "length": ln.length,
                                  "label": f"MoorDyn line {ln.id}" + (" (reversed)" if rev
                                                                      else "")})
         where[f"segments[{k}]"] = ln.line
@@ -335,6 +335,58 @@ def scene_dict(deck: Deck, name: str, current_file: Path | None,
     notes.append("MoorDyn mesh, not carried: " + ", ".join(
         f"line {deck.lines[i].id} {deck.lines[i].segments} segments" for i, _ in order))
     return data, notes, where, comments
+
+
+def axial_damping_of(lt, length: float, segments: int) -> float:
+    """The internal axial damping BA [N s] MoorDyn-C gives a line of type ``lt`` (BA/-zeta
+    as written), unstretched length ``length`` [m] and ``segments`` segments: a BA >= 0 as
+    it is; a negative one is minus a damping ratio zeta of the segment's axial mode,
+    MoorDyn-C's Line::initialize c = zeta (L / N) sqrt(E rho) [Pa s] with E = EA / A and
+    rho = (Mass/m) / A, i.e. BA = c A = zeta (L / N) sqrt(EA Mass/m)."""
+    ba = float(lt.BA)
+    if ba >= 0.0:
+        return ba
+    return -ba * length / segments * math.sqrt(lt.EA * lt.mass)
+
+
+def _axial_damping(deck: Deck, order, types: dict, where: dict,
+                   notes: list[str]) -> list[str]:
+    """Each used line type's ``axial_damping`` (BA/-zeta: :func:`axial_damping_of`) set in
+    ``types``, and the line type of each segment (in ``order``). A negative BA depends on
+    the line's segment length: lines of one type with different segment lengths get a
+    line type each (``NAME_lineID``), with a note. A viscoelastic BA (``static|dynamic``)
+    is dropped with a note."""
+    seg_types = [deck.lines[i].line_type for i, _ in order]
+    for tname in list(types):
+        lt = deck.line_types[tname]
+        if "|" in lt.BA:
+            notes.append(f"line type {tname}: BA/-zeta = {lt.BA} dropped (a viscoelastic "
+                         "line's damping; the scene's axial damping is one BA)")
+            continue
+        ks = [k for k, (i, _) in enumerate(order) if deck.lines[i].line_type == tname]
+        values = [axial_damping_of(lt, deck.lines[order[k][0]].length,
+                                   deck.lines[order[k][0]].segments) for k in ks]
+        if float(lt.BA) < 0.0:
+            notes.append(f"line type {tname}: BA/-zeta = {lt.BA}, a damping ratio of the "
+                         "segment's axial mode: axial_damping = zeta (L / N) sqrt(EA Mass/m) "
+                         "of each line, as MoorDyn-C converts it (" + ", ".join(
+                             f"line {deck.lines[order[k][0]].id}: {v:.6g} N s"
+                             for k, v in zip(ks, values)) + ")")
+        if all(v == values[0] for v in values):
+            if values[0] > 0.0:
+                types[tname]["axial_damping"] = values[0]
+            continue
+        base = types.pop(tname)
+        line = where.pop(f"line_types.{tname}")
+        for k, v in zip(ks, values):
+            name = f"{tname}_line{deck.lines[order[k][0]].id}"
+            types[name] = {**base, "axial_damping": v}
+            where[f"line_types.{name}"] = line
+            seg_types[k] = name
+        notes.append(f"line type {tname}: its lines' segment lengths differ, so do their "
+                     "BA: a line type per line (" + ", ".join(
+                         seg_types[k] for k in ks) + ")")
+    return seg_types
 
 
 def _attachments(deck: Deck, order, free_end: DeckPoint | None, joints: list[DeckPoint],

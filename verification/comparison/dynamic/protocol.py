@@ -46,6 +46,7 @@ from verification.methods import method
 from verification.pipeline import vfife_equivalent
 
 from .rows import ABOVE_SMALLEST, agreement_rows, nonlinearity, station_rows
+from . import ancf_side
 from .vfife_side import SETTLE_PERIODS, settled_run
 
 RAMP_PERIODS = 3
@@ -73,10 +74,16 @@ class AmplitudeResult:
     warnings: list = field(default_factory=list)
     vfife_wall_s: float = 0.0
     fd_wall_s: float = 0.0
+    #: the ANCF's time domain judged like the VFIFE (None: not run), its rows, wall
+    #: time [s] and run figures (element length, time step, Newton iterations a step)
+    ancf: dict | None = None
+    ancf_rows: list = field(default_factory=list)
+    ancf_wall_s: float = 0.0
+    ancf_info: dict = field(default_factory=dict)
 
     @property
     def passed(self) -> bool:
-        return all(r["pass"] is not False for r in self.rows)
+        return all(r["pass"] is not False for r in self.rows + self.ancf_rows)
 
 
 @dataclass
@@ -258,13 +265,16 @@ def tightened_statics(scene: Scene) -> dict:
 
 def compare_dynamics(scene: Scene, *, amplitudes=None, element_length: float | None = None,
                      static=None, fd_modifier=None, vfife_modifier=None,
-                     progress=None) -> DynamicComparison:
+                     progress=None, ancf: bool | str = False) -> DynamicComparison:
     """Compare the scene's harmonic motion by both methods at each of ``amplitudes`` [m]
     (default the scene's). ``static``: the BVP static result of the matched scene (solved
     here when None). ``fd_modifier``/``vfife_modifier`` (Scene -> Scene) alter one
-    method's scene only (the negative controls). Raises SceneError for a scene the
-    comparison cannot take (no harmonic motion, a period too short, the FD refusing),
-    SolveFailed when a method fails."""
+    method's scene only (the negative controls). ``ancf``: also run the ANCF's time
+    domain and judge it against the FD like the VFIFE (:mod:`.ancf_side`): True at every
+    amplitude, "first" at the first (the linear limit) only, False (the default: the
+    callers that want it say so, ``compare --dynamics`` does) not. Raises
+    SceneError for a scene the comparison cannot take (no harmonic motion, a period too
+    short, the FD refusing), SolveFailed when a method fails."""
     now = progress or (lambda msg: None)
     axis, period, amps = check_motions(scene, amplitudes)
     eq = vfife_equivalent(scene)
@@ -313,6 +323,21 @@ def compare_dynamics(scene: Scene, *, amplitudes=None, element_length: float | N
         if k > 0:                  # the linear limit is judged; the rest measures nonlinearity
             rows = [row.judged(None, ABOVE_SMALLEST) if row.passed is not None else row
                     for row in rows]
-        results.append(AmplitudeResult(a, fd, vf, rows, station_rows(fd, vf, static),
-                                       nonlinearity(vf, zone), warns, wall, fd.wall_time_s))
+        res = AmplitudeResult(a, fd, vf, rows, station_rows(fd, vf, static),
+                              nonlinearity(vf, zone), warns, wall, fd.wall_time_s)
+        if ancf is True or (ancf == "first" and k == 0):
+            def ancf_scene(settle, a=a):
+                return dynamic_scene(matched, axis, a, period, settle, ramp)
+
+            now(f"ancf: amplitude {a:g} m ({k + 1}/{len(amps)})")
+            an, an_wall, an_info = ancf_side.settled_run(ancf_scene, period, ramp, axis,
+                                                         f"amplitude {a:g} m", progress)
+            an_rows, _, an_warns = agreement_rows(matched, fd, an, static, method="ancf")
+            if k > 0:
+                an_rows = [row.judged(None, ABOVE_SMALLEST) if row.passed is not None
+                           else row for row in an_rows]
+            res.ancf, res.ancf_rows, res.ancf_wall_s, res.ancf_info = (an, an_rows, an_wall,
+                                                                      an_info)
+            res.warnings.extend(w for w in an_warns if w.startswith("window_drift"))
+        results.append(res)
     return DynamicComparison(scene, matched, axis, period, h, results, static, notes)

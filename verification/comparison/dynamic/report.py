@@ -34,7 +34,11 @@ from .protocol import (ORBIT, RAMP_PERIODS, SETTLE_PERIODS, WAVE, WINDOW_PERIODS
                        DynamicComparison)
 
 FILES = ("dynamic_agreement.csv", "stations.csv", "response.csv", "transfer.csv",
-         "transfer_along_s.csv", "response.png", "sweep.png", "transfer.png", "report.md")
+         "transfer_along_s.csv", "response.png", "sweep.png", "transfer.png", "report.md",
+         "dynamic_agreement_ancf.csv")
+#: the ANCF's rows against the FD (the columns of dynamic_agreement.csv, its values
+#: under ``ancf``), written when the ANCF ran
+ANCF_FILE = "dynamic_agreement_ancf.csv"
 #: stations along s of ``transfer_along_s.csv`` (evenly spaced, the ends included)
 TRANSFER_STATIONS = 101
 #: periods of the transfer functions, as multiples of the motion's period
@@ -95,9 +99,15 @@ def frames(dc: DynamicComparison) -> dict:
             "fd_displacement": np.sqrt(sum(np.abs(q[k]) ** 2 for k in ("dx", "dy", "dz"))),
             "vfife_displacement": np.sqrt(sum(r.vf[k].amplitude ** 2
                                               for k in ("dx", "dy", "dz")))}))
-    return {"dynamic_agreement.csv": pd.DataFrame(agree),
-            "stations.csv": pd.DataFrame(stations),
-            "response.csv": pd.concat(resp, ignore_index=True)}
+    out = {"dynamic_agreement.csv": pd.DataFrame(agree),
+           "stations.csv": pd.DataFrame(stations),
+           "response.csv": pd.concat(resp, ignore_index=True)}
+    ancf = [{"amplitude_m": r.amplitude, **{k: row[k] for k in (
+        "quantity", "fd", "ancf", "rel_diff", "s", "tolerance", "basis", "pass")}}
+        for r in dc.results for row in r.ancf_rows]
+    if ancf:
+        out[ANCF_FILE] = pd.DataFrame(ancf)
+    return out
 
 
 def write(dc: DynamicComparison, out: str | Path, static_markdown: str = "",
@@ -126,7 +136,9 @@ def markdown(dc: DynamicComparison, static_markdown: str = "", peer_markdown: st
         transfer_written = dc.axis not in (WAVE, ORBIT)
     sc = dc.scene
     verdict = "PASS" if dc.passed else "FAIL"
-    lines = [f"{heading} Dynamic response, frequency domain vs VFIFE: `{sc.name}`", "",
+    with_ancf = any(r.ancf is not None for r in dc.results)
+    lines = [f"{heading} Dynamic response, frequency domain vs VFIFE"
+             + (" and ANCF" if with_ancf else "") + f": `{sc.name}`", "",
              GENERATED_NOTE, "", f"**Verdict: {verdict}** (the judged rows of every "
              "amplitude; the static comparison has its own verdict)", ""]
     amps = ', '.join(f'{r.amplitude:g}' for r in dc.results)
@@ -194,6 +206,20 @@ def markdown(dc: DynamicComparison, static_markdown: str = "", peer_markdown: st
                   "settling"
                   + (f"; contact zone s = {zone[0]:.1f} to {zone[1]:.1f} m" if zone else "")
                   + ".", ""]
+        if r.ancf is not None:
+            i = r.ancf_info
+            lines += [f"The ANCF's time domain ({i['element_length']:g} m cubic elements, "
+                      f"{i['integrator']} steps of {i['dynamic_time_step']:.3g} s, "
+                      f"{i['newton_iterations_per_step']:.2f} Newton iterations a step, "
+                      f"{r.ancf['settle_periods']} periods of settling; "
+                      f"{timed(r.ancf_wall_s, '.1f')}) against the same FD, judged like "
+                      "the VFIFE:", ""]
+            lines.append(md_table(
+                ["quantity", "FD", "ANCF", "ANCF vs FD", "at s [m]", "tolerance", "basis",
+                 "pass"],
+                [(f"`{w['quantity']}`", _dyn(w["fd"]), _dyn(w["ancf"]), _rel(w), w["s"],
+                  w["tolerance"], w["basis"], PASS_WORD[w["pass"]]) for w in r.ancf_rows]))
+            lines.append("")
     lines += [f"{heading}# Tolerances", "", md_table(
         ["quantity", "tolerance", "basis", "reason"],
         [(f"`{k}`", v[0], v[1], v[2]) for k, v in TOLERANCES.items()]), "",
@@ -204,7 +230,8 @@ def markdown(dc: DynamicComparison, static_markdown: str = "", peer_markdown: st
         "![differences over the amplitude sweep](sweep.png)", "",
         *(["![transfer functions](transfer.png)", ""] if transfer_written else []),
         "Files: " + ", ".join(f"`{f}`" for f in FILES[:5]
-                              if transfer_written or not f.startswith("transfer")) + ".",
+                              if transfer_written or not f.startswith("transfer"))
+        + (f", `{ANCF_FILE}`" if with_ancf else "") + ".",
         ""]
     if peer_markdown:
         lines.append(peer_markdown)
@@ -293,6 +320,11 @@ def console_lines(dc: DynamicComparison) -> list[str]:
         for w in r.rows:
             flag = {True: "ok  ", False: "FAIL", None: "n/a "}[w["pass"]]
             out.append(f"    {flag} {w['quantity']:<34} {_rel(w)}")
+        if r.ancf is not None:
+            out.append(f"    ANCF against the same FD ({r.ancf_wall_s:.1f} s):")
+            for w in r.ancf_rows:
+                flag = {True: "ok  ", False: "FAIL", None: "n/a "}[w["pass"]]
+                out.append(f"    {flag} {w['quantity']:<34} {_rel(w)}")
         out += [f"    warning: {x}" for x in r.warnings]
     return out
 

@@ -5,6 +5,8 @@ amplitudes (see :mod:`riser.results.response` for the convention)."""
 
 from __future__ import annotations
 
+import functools
+
 import math
 
 import numpy as np
@@ -94,7 +96,7 @@ ZERO_FIRST_ORDER = 1e-9
 
 
 def _row(name, fd_value, vf_value, rel, where=None, slack=False, judged=True,
-         bound: str | None = None) -> Row:
+         bound: str | None = None, method: str = "vfife") -> Row:
     """A verdict row, VFIFE against FD (``rel``: the relative difference; ``where`` [m]);
     its tolerance that of ``bound`` (default: the row's own name) in :data:`TOLERANCES`,
     judged relative; not judged when ``judged`` is False, the line goes slack (``slack``)
@@ -107,12 +109,16 @@ def _row(name, fd_value, vf_value, rel, where=None, slack=False, judged=True,
     ok = None if (slack or not judged or tol is None or rel is None) else bool(abs(rel) <= tol)
     tolerance = (Tolerance(tol, None, basis, "", reason, relative=True) if judged
                  else Tolerance(None, None, basis, relative=True))
-    return Row(name, {"fd": fd_value, "vfife": vf_value}, "", None, rel, tolerance,
+    return Row(name, {"fd": fd_value, method: vf_value}, "", None, rel, tolerance,
                Verdict.of(ok), "" if judged else reason, where)
 
 
-def agreement_rows(scene: Scene, fd: HarmonicResponse, vf: dict, static):
-    """The verdict rows (see the module docstring), the contact zone and the warnings."""
+def agreement_rows(scene: Scene, fd: HarmonicResponse, vf: dict, static,
+                   method: str = "vfife"):
+    """The verdict rows (see the module docstring), the contact zone and the warnings;
+    ``vf`` the time domain's harmonics, its values under ``method``'s name (the VFIFE,
+    or the ANCF judged alike)."""
+    _row_ = functools.partial(_row, method=method)
     s = vf["s"]
     q = {k: fd.at(k, s) for k in ("tension", "moment", "moment_out", "dx", "dy", "dz")}
     T0 = np.interp(s, fd.s, fd.static["tension"])
@@ -125,18 +131,18 @@ def agreement_rows(scene: Scene, fd: HarmonicResponse, vf: dict, static):
     tmax = float(np.max(static.profile.tension))
     top_fd, top_vf = q["tension"][-1], vf["tension"].first[-1]
     if float(np.max(np.abs(q["tension"]))) <= ZERO_FIRST_ORDER * tmax:
-        rows = [_row(name, 0.0, value, None, s[-1]) for name, value in (
+        rows = [_row_(name, 0.0, value, None, s[-1]) for name, value in (
             ("hang_off_tension_amplitude", abs(top_vf)),
             ("hang_off_tension_phase_deg", math.degrees(np.angle(top_vf))),
             ("tension_amplitude", float(np.max(vf["tension"].amplitude))))]
     else:
-        rows = [_row("hang_off_tension_amplitude", abs(top_fd), abs(top_vf),
+        rows = [_row_("hang_off_tension_amplitude", abs(top_fd), abs(top_vf),
                      abs(top_vf) / abs(top_fd) - 1.0, s[-1], slack),
-                _row("hang_off_tension_phase_deg", math.degrees(np.angle(top_fd)),
+                _row_("hang_off_tension_phase_deg", math.degrees(np.angle(top_fd)),
                      math.degrees(np.angle(top_vf)),
                      wrap_deg(math.degrees(np.angle(top_vf) - np.angle(top_fd))), s[-1], slack)]
         rel, where = _along(q["tension"], vf["tension"].first, s)
-        rows.append(_row("tension_amplitude", float(np.max(np.abs(q["tension"]))),
+        rows.append(_row_("tension_amplitude", float(np.max(np.abs(q["tension"]))),
                          float(np.max(vf["tension"].amplitude)), rel, where, slack))
     zone = contact_zone(scene, fd, static)
     keep = np.ones(s.size, bool) if zone is None else (s < zone[0]) | (s > zone[1])
@@ -144,24 +150,24 @@ def agreement_rows(scene: Scene, fd: HarmonicResponse, vf: dict, static):
         if float(np.max(np.abs(q[name]))) == 0.0:
             continue
         rel, where = _along(q[name], vf[name].first, s, keep)
-        rows.append(_row(f"{name}_amplitude", float(np.max(np.abs(q[name][keep]))),
+        rows.append(_row_(f"{name}_amplitude", float(np.max(np.abs(q[name][keep]))),
                          float(np.max(vf[name].amplitude[keep])), rel, where, slack,
                          bound="moment_amplitude"))
         if zone is not None:
             rel, where = _along(q[name], vf[name].first, s, ~keep)
-            rows.append(_row(f"{name}_amplitude_contact_zone", None, None, rel, where,
+            rows.append(_row_(f"{name}_amplitude_contact_zone", None, None, rel, where,
                              judged=False))
     disp_fd = np.sqrt(sum(np.abs(q[k]) ** 2 for k in ("dx", "dy", "dz")))
     disp_vf = np.sqrt(sum(vf[k].amplitude ** 2 for k in ("dx", "dy", "dz")))
     rel, where = _along(disp_fd, disp_vf, s)
-    rows.append(_row("displacement_amplitude", float(np.max(disp_fd)),
+    rows.append(_row_("displacement_amplitude", float(np.max(disp_fd)),
                      float(np.max(disp_vf)), rel, where, slack))
-    rows.append(_row("min_tension", fd_min, vf["min_tension"],
+    rows.append(_row_("min_tension", fd_min, vf["min_tension"],
                      (vf["min_tension"] - fd_min) / tmax, None, slack))
     if scene.design is not None and vf.get("max_utilisation") is not None:
-        rows.append(design_row(scene, fd, vf, s))
+        rows.append(design_row(scene, fd, vf, s, method))
     if vf["drift"] > DRIFT_LIMIT:
-        warns.append(f"window_drift: the VFIFE's first harmonic changed by "
+        warns.append(f"window_drift: the {method.upper()}'s first harmonic changed by "
                      f"{vf['drift']:.2%} of its peak between the window's halves after "
                      f"{vf.get('settle_periods', '?')} periods of settling: "
                      "the start-up transient has not decayed")
@@ -213,7 +219,8 @@ def wrap_deg(deg: float) -> float:
     return (deg + 180.0) % 360.0 - 180.0
 
 
-def design_row(scene: Scene, fd: HarmonicResponse, vf: dict, s) -> Row:
+def design_row(scene: Scene, fd: HarmonicResponse, vf: dict, s,
+               method: str = "vfife") -> Row:
     """With [design], the largest dynamic utilisation: the FD's over a cycle of its first
     harmonic about the static state (:func:`riser.design.checks.harmonic_columns`) against
     the VFIFE's largest over its window (every sample: its higher harmonics too);
@@ -221,7 +228,7 @@ def design_row(scene: Scene, fd: HarmonicResponse, vf: dict, s) -> Row:
     record does not carry: not compared."""
     if not scene.statics_planar:
         return _row("max_utilisation_dynamic", None, vf["max_utilisation"], None,
-                    judged=False)
+                    judged=False, method=method)
     q = {k: fd.at(k, s) for k in ("tension", "moment", "moment_out", "dy")}
     y = np.interp(s, vf["static_s"], vf["static_y"])
     cols = harmonic_columns(scene, s, y, np.interp(s, fd.s, fd.static["tension"]),
@@ -229,4 +236,5 @@ def design_row(scene: Scene, fd: HarmonicResponse, vf: dict, s) -> Row:
     j = int(np.argmax(cols["utilisation"]))
     fd_u = float(cols["utilisation"][j])
     return _row("max_utilisation_dynamic", fd_u, vf["max_utilisation"],
-                vf["max_utilisation"] / fd_u - 1.0, float(s[j]), judged=False)
+                vf["max_utilisation"] / fd_u - 1.0, float(s[j]), judged=False,
+                method=method)

@@ -20,6 +20,16 @@ bound) and, reported, the standard deviations of the tension and curvature along
 largest difference over the FD's peak), the hang-off tension's zero-upcrossing period and
 3 h most probable maximum (Rayleigh, each from its spectral moments: the FD's spectrum,
 the VFIFE's record's periodogram), and the record's halves.
+
+Extremes over the storm (``[design] storm_duration``, else 3 h; :func:`extreme_rows`,
+reported, not judged): the hang-off tension's maximum, the least tension along the line,
+the largest moment along it and, with [design], the largest utilisation. The FD's: the
+static value plus (minus) its Rayleigh MPM sigma sqrt(2 ln(D / Tz)) from its spectral
+moments at each station, the worst station's; the VFIFE's: the most probable maximum of
+its record by a Weibull fit of the peaks (:mod:`riser.design.extremes`, the recorder's
+``dynamic_*_mpm`` figures), its bootstrap interval, its Rayleigh form and the record's
+own extreme. The FD's utilisation combines the MPMs of tension and moment in phase
+(:func:`riser.design.checks.amplitude_columns`: an upper bound).
 """
 
 from __future__ import annotations
@@ -31,6 +41,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from bvp.frequency.sea_response import SeaResponse
+from riser.design.extremes import (SUMMARY_EXTREMES, rayleigh_mpm, storm_duration,
+                                   summary_extreme)
 from riser.physics.dynamics import Dynamics
 from riser.errors import SceneError, SolveFailed, UnsupportedSceneError
 from riser.results.result import Status
@@ -48,7 +60,8 @@ TOLERANCE = 0.05
 SETTLE_PEAK_PERIODS = 6
 #: time-series samples per shortest component period
 SAMPLES_PER_SHORTEST = 10
-#: the storm duration of the most probable maxima [s]
+#: the storm duration of the rows ``hang_off_tension_mpm_3h`` [s] (the storm of the
+#: extremes is the scene's, :func:`riser.design.extremes.storm_duration`)
 STORM = 10800.0
 
 
@@ -75,6 +88,8 @@ class SeaComparison:
     fd_wall_s: float = 0.0
     vfife_wall_s: float = 0.0
     vfife_result: object = None       # the VFIFE's SolveResult of the run (its dynamics)
+    storm_s: float = STORM            # the storm of the extremes [s]
+    extremes: list = field(default_factory=list)    # :func:`extreme_rows`
 
     @property
     def passed(self) -> bool:
@@ -127,7 +142,8 @@ def compare_sea(scene: Scene, *, element_length: float | None = None, static=Non
     if not static.converged:
         raise SolveFailed("bvp", static.status, f"bvp statics: {static.message}")
     now("frequency domain: the sea's components, drag linearised stochastically")
-    fd = method("bvp").sea(matched, static=static, duration=STORM)
+    storm = storm_duration(matched)
+    fd = method("bvp").sea(matched, static=static, duration=storm)
     if fd.status is Status.REFUSED:
         raise UnsupportedSceneError(fd.message)
     if not fd.converged:
@@ -151,8 +167,12 @@ def compare_sea(scene: Scene, *, element_length: float | None = None, static=Non
         raise SolveFailed("vfife", v.status, f"vfife in the sea: {v.message}")
     vf = read_record(v, ramp + settle)
     rows = agreement_rows(fd, vf, static)
+    extremes = extreme_rows(matched, fd, v.summary(), static)
+    rows += [_row(f"{e['name']}_mpm", e["fd"], e["vfife"], None, "of the FD value (static "
+                  "+ Rayleigh MPM; VFIFE: Weibull MPM) over the storm", False)
+             for e in extremes]
     return SeaComparison(scene, matched, fd, vf, rows, h, record, ramp, settle, static,
-                         notes, fd.wall_time_s, wall, v)
+                         notes, fd.wall_time_s, wall, v, storm, extremes)
 
 
 def read_record(res, start: float) -> dict:
@@ -206,8 +226,9 @@ def agreement_rows(fd: SeaResponse, vf: dict, static) -> list[Row]:
     fd_tz = float(fd.tz["tension"][-1])
     rows.append(_row("hang_off_tension_tz_s", fd_tz, vf["tz"], None, "of the FD value",
                      False))
-    rows.append(_row("hang_off_tension_mpm_3h", T0 + float(fd.mpm["tension"][-1]),
-                     vf["mpm_3h"], None, "of the FD value (static + MPM)", False))
+    rows.append(_row("hang_off_tension_mpm_3h", T0 + rayleigh_mpm(
+        fd.std["tension"][-1], fd.tz["tension"][-1], STORM), vf["mpm_3h"], None,
+        "of the FD value (static + MPM)", False))
     for i, half in enumerate(vf["std_halves"]):
         rows.append(_row(f"hang_off_tension_std_half_{i + 1}", fd_std, half, None,
                          "of the FD value (half the record)", False))
@@ -220,3 +241,44 @@ def _row(name, fd_value, vf_value, tol, basis, judged) -> Row:
     ok = None if not judged else (rel is not None and abs(rel) <= tol)
     return Row(name, {"fd": fd_value, "vfife": vf_value}, "", None, rel,
                Tolerance(tol, None, basis, relative=True), Verdict.of(ok))
+
+
+def fd_extremes(scene, fd: SeaResponse, static) -> dict:
+    """name -> the FD's extreme over its storm (``fd.mpm``, over ``fd.duration``: the
+    static state plus the Rayleigh MPM at each station, the worst station's; the module
+    docstring): ``hang_off_tension`` [N] at the hang-off, ``min_tension`` [N] (the least
+    of T_0 - MPM along s), ``max_moment`` [N m] (the largest of |M_0| + MPM), and with
+    [design] ``max_utilisation`` [-] (the MPMs of tension and moment combined in phase on
+    the static profile's stations)."""
+    out = {"hang_off_tension": float(static.profile.tension[-1]) + float(
+        fd.mpm["tension"][-1]),
+        "min_tension": float(np.min(fd.static["tension"] - fd.mpm["tension"])),
+        "max_moment": float(np.max(np.abs(fd.static["moment"]) + fd.mpm["moment"]))}
+    if scene.design is not None:
+        from riser.design.checks import amplitude_columns
+        p = static.profile
+        cols = amplitude_columns(scene, p.s, p.y, p.tension, p.moment,
+                                 np.interp(p.s, fd.s, fd.mpm["tension"]),
+                                 np.interp(p.s, fd.s, fd.mpm["moment"]))
+        out["max_utilisation"] = float(np.max(cols["utilisation"]))
+    return out
+
+
+def extreme_rows(scene, fd: SeaResponse, info: dict, static) -> list[dict]:
+    """The extremes over the storm (module docstring), one dict a quantity of
+    :data:`riser.design.extremes.SUMMARY_EXTREMES` that the FD or the VFIFE has:
+    ``name``, ``label``, ``unit`` (SI), ``fd`` (static + Rayleigh MPM), ``vfife`` (its
+    Weibull MPM), ``low``, ``high`` (its 90 % interval), ``rayleigh`` (its record's
+    Rayleigh MPM), ``record`` (its record's extreme), ``peaks``, ``shape`` (the Weibull's
+    k); None where missing. ``info``: the VFIFE's summary (``dynamic_*`` figures)."""
+    fde = fd_extremes(scene, fd, static)
+    rows = []
+    for name, (_, unit, label) in SUMMARY_EXTREMES.items():
+        td = summary_extreme(info, name)
+        if name not in fde and td is None:
+            continue
+        td = td or dict.fromkeys(("mpm", "low", "high", "rayleigh", "record", "peaks",
+                                  "shape"))
+        rows.append({"name": name, "label": label, "unit": unit, "fd": fde.get(name),
+                     "vfife": td.pop("mpm"), **td})
+    return rows

@@ -7,7 +7,8 @@ and the VFIFE's standard deviation of tension [N] and curvature [1/m]), ``spectr
 (omega [rad/s], the wave spectrum S_eta [m2 s/rad], the hang-off tension's spectrum by
 the FD and the VFIFE's record's periodogram [N2 s/rad] at the components' frequencies),
 ``sea_response.png``, ``spectra.png``, ``sea_tension.png`` (the VFIFE's record) and
-``report.md``; the static comparison's files beside them (its report the first section).
+``report.md`` (with the extremes over the storm: :func:`extremes_markdown`); the static
+comparison's files beside them (its report the first section).
 """
 
 from __future__ import annotations
@@ -18,7 +19,7 @@ import numpy as np
 import pandas as pd
 
 from verification.report.figures import new_figure, save
-from verification.report.markdown import GENERATED_NOTE, md_table, pct_step, timed
+from verification.report.markdown import GENERATED_NOTE, md_table, pct, pct_step, timed
 from verification.runtime.stable import QUANTA
 
 from .protocol import TOLERANCE, SeaComparison
@@ -108,12 +109,60 @@ def markdown(sc: SeaComparison, static_markdown: str = "", heading: str = "#") -
                      r["basis"], PASS_WORD[r["pass"]]))
     lines += ["", f"{heading}# Agreement", "", md_table(
         ("quantity", "FD", "VFIFE", "difference", "s [m]", "tolerance", "basis", "judged pass"),
-        rows), "", f"{heading}# Figures", "",
+        rows), ""]
+    lines += extremes_markdown(sc, heading)
+    lines += [f"{heading}# Figures", "",
         "![standard deviations along s](sea_response.png)", "",
         "![hang-off tension spectra](spectra.png)", "",
         "![the VFIFE's hang-off tension record](sea_tension.png)", "",
         "Files: " + ", ".join(f"`{f}`" for f in FILES[:3]) + ".", ""]
     return "\n".join(lines)
+
+
+#: the report's unit of an SI unit and its size
+REPORT_UNITS = {"N": ("kN", 1e3), "N m": ("kN m", 1e3), "-": ("-", 1.0)}
+
+
+def _value(v, scale: float) -> str:
+    return "" if v is None else f"{v / scale:.4g}"
+
+
+def extremes_markdown(sc: SeaComparison, heading: str = "#") -> list[str]:
+    """The section of the extremes over the storm (:func:`..protocol.extreme_rows`): the
+    FD's Rayleigh MPM beside the VFIFE's Weibull MPM, its interval, its Rayleigh form and
+    its record's own extreme; [] when there are none."""
+    if not sc.extremes:
+        return []
+    d = sc.storm_s
+    body = []
+    for e in sc.extremes:
+        unit, k = REPORT_UNITS[e["unit"]]
+        interval = ("" if e["low"] is None or e["high"] is None else
+                    f"{e['low'] / k:.4g} - {e['high'] / k:.4g}")
+        ratio = ("" if e["fd"] is None or e["vfife"] is None or not e["fd"]
+                 else f"{e['vfife'] / e['fd']:.3f}")
+        body.append((e["label"], unit, _value(e["fd"], k), _value(e["vfife"], k),
+                     interval, _value(e["rayleigh"], k), _value(e["record"], k),
+                     "" if e["peaks"] is None else f"{e['peaks']:.0f}",
+                     "" if e["shape"] is None else f"{e['shape']:.2f}", ratio))
+    return [f"{heading}# Extremes over the storm ({d:g} s)", "",
+            f"The most probable maximum (MPM; of the least tension: minimum) over a storm "
+            f"of D = {d:g} s ({d / 3600:.3g} h; `[design] storm_duration`, else 3 h; "
+            "docs/design.md, \"Extremes over a storm\"), reported, not judged. FD: the "
+            "static value plus its Rayleigh MPM sigma sqrt(2 ln(D / Tz)) from its spectral "
+            "moments, at the worst station (the utilisation: the MPMs of tension and moment "
+            "combined in phase, an upper bound). VFIFE: a two-parameter Weibull fitted by "
+            "maximum likelihood to the upper half of the peaks of its "
+            f"{sc.record_s:.4g} s record (a peak: the largest value between successive "
+            "up-crossings of the mean; the troughs for the least tension), at N = D / Tz "
+            "peaks; its 90 % interval a bootstrap of the "
+            "peaks (seeded: it regenerates byte for byte; the fit's sampling error alone, "
+            "narrower than the scatter from one record to another); beside it the Rayleigh "
+            "form with the record's own sigma and Tz, and the record's own extreme over "
+            f"{sc.record_s:.4g} s.", "",
+            md_table(("quantity", "unit", "FD: static + Rayleigh MPM", "VFIFE: Weibull MPM",
+                      "90 % interval", "VFIFE: Rayleigh MPM", "VFIFE: record's extreme",
+                      "peaks", "Weibull k", "VFIFE / FD"), body), ""]
 
 
 def _plots(sc: SeaComparison, tables: dict, out: Path) -> None:

@@ -59,7 +59,7 @@ class AnalyticColumn:
     def markdown(self, comp, res: ColumnResult, heading: str = "#") -> list[str]:
         """The report's section: what was solved (or why not), and its differences to the
         BVP beside the VFIFE's."""
-        lines = ["", f"{heading}# Analytic method (third column), not part of the verdict", "",
+        lines = ["", f"{heading}# Analytic method (further column), not part of the verdict", "",
                  res.note]
         if res.profile is None:
             return lines

@@ -1,9 +1,11 @@
-"""Further columns of a comparison, beside the verdict (BVP against VFIFE).
+"""Further columns of a comparison beside the verdict (BVP against VFIFE), and the ANCF's,
+judged with it.
 
 A column is another solution of the same scene set beside the two methods: the analytic
 method (:mod:`.analytic_column`) where it applies, and a peer code asked for on the
-command line (a folder of ``verification/peers/``, e.g. MoorDyn). None is ever part of the
-verdict. Every column is one instance of :class:`Column`, so the protocol, the report
+command line (a folder of ``verification/peers/``, e.g. MoorDyn), none of them part of the
+verdict; and a further method of the suite, the ANCF (:mod:`.ancf_column`), whose rows
+are judged (``ColumnResult.judged``). Every column is one instance of :class:`Column`, so the protocol, the report
 and the command line treat them alike and never name one:
 
 - ``name``: its ``agreement.csv`` columns ``NAME`` (its value of each verdict row) and
@@ -43,6 +45,8 @@ class ColumnResult:
     note : one paragraph: what it solved, or why it does not apply.
     ok : False when it was asked for and failed (the command exits 1); a column that does
         not apply to a scene is ok.
+    judged : its rows are in the verdict (a method of the suite's: the ANCF), not only
+        shown beside it (the analytic method, a peer).
     """
 
     column: "Column"
@@ -52,6 +56,7 @@ class ColumnResult:
     rows: list = field(default_factory=list)
     note: str = ""
     ok: bool = True
+    judged: bool = False
 
     @property
     def name(self) -> str:

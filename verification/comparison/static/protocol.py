@@ -38,6 +38,7 @@ from verification.runtime.interrupts import reraise_interrupt
 
 from .agreement import AGREEMENT_COLUMNS, agreement, unresolved_bending
 from .analytic_column import AnalyticColumn
+from .ancf_column import ANCFColumn
 from .columns import Column, ColumnResult
 
 #: the BVP's paper model (Wang et al. 2014): the limit of the matched model
@@ -71,9 +72,12 @@ class Comparison:
 
     @property
     def passed(self) -> bool:
-        """Every judged row within its tolerance (a row shown but not judged, pass None,
-        does not count: its reason is in its note)."""
-        return all(r["pass"] is not False for r in self.rows)
+        """Every judged row within its tolerance, the VFIFE's and those of a judged column
+        (the ANCF's; a row shown but not judged, pass None, does not count: its reason is
+        in its note), and no judged column failed to solve."""
+        return (all(r["pass"] is not False for r in self.rows)
+                and all(res.ok and all(r["pass"] is not False for r in res.rows)
+                        for res in self.columns.values() if res.judged))
 
     @property
     def columns_ok(self) -> bool:
@@ -121,8 +125,10 @@ def model_text(scene: Scene) -> str:
 
 
 def default_columns() -> tuple[Column, ...]:
-    """The further columns every comparison has: the analytic method (where it applies)."""
-    return (AnalyticColumn(),)
+    """The further columns every comparison has: the analytic method (where it applies) and
+    the ANCF (judged); agreement.csv keeps the analytic method's columns where they were
+    and adds the ANCF's after them."""
+    return (AnalyticColumn(), ANCFColumn())
 
 
 def compare(scene: Scene, *, element_length: float | None = None, paper_model: bool = True,

@@ -11,7 +11,7 @@ import numpy as np
 from riser.results.result import Status
 from verification.pipeline import shifted
 from verification.quantities import signed_moment
-from verification.report.figures import new_figure, save
+from verification.report.figures import add_panel_below, new_figure, plan_view, save
 from verification.report.markdown import GENERATED_NOTE, fmt, md_table, timed
 
 from ..formatting import ROUND_OFF, num, rel, scale, signed, where
@@ -176,6 +176,12 @@ def _plots(comp: Comparison, out: Path) -> None:
     ax.set_title(f"{comp.scene.name}: configurations")
     ax.legend()
     ax.grid(alpha=0.3)
+    if bp.is_3d or vp.is_3d:             # a 3D line: its plan view below (planar: none)
+        plan_view(add_panel_below(fig, 4.0), [
+            (bp.x, bp.z, {"ls": "-", "lw": 2.0}), (vp.x, vp.z, {"ls": "--", "lw": 1.2}),
+            *[(r.profile.x, r.profile.z, r.column.style) for r in further],
+            *([(pp.x, pp.z, {"ls": ":", "lw": 1.0, "color": "0.4"})] if pp is not None
+              else [])])
     save(fig, out / "configurations.png")
     fig, axes = new_figure(3, 1, (9, 10))
     for ax, key, label in zip(axes[:, 0], ("tension", "moment", "shear"),

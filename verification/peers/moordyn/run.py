@@ -57,7 +57,7 @@ from riser.model.frame import LinePlane, plane_columns
 from riser.results.profile import Profile
 from riser.results.result import Status
 from riser.model.scene import Scene
-from vfife.dynamics.outputs import touchdown_s
+from riser.results.recorder import touchdown_s
 
 from .deck import DeckFiles, export
 

@@ -1,7 +1,8 @@
 """What accuracy costs in time: convergence and cost study of both methods on one scene.
 
 ``riser-verify cost SCENE [--out DIR]`` (default ``reports/cost/SCENE/``) writes
-``runs.csv``, ``values.csv``, ``dynamics.csv``, ``report.md`` and four plots. Modules:
+``runs.csv``, ``values.csv``, ``dynamics.csv``, ``dynamics_ancf.csv``, ``report.md`` and
+five plots. Modules:
 ``settings`` (the runs swept), ``runner`` (solving and timing them, :func:`study`),
 ``errors`` (quantity errors against a reference), ``fits`` (Richardson limit, order fits),
 ``touchdown`` (the lengths of the asymptotic range, the lift-off), ``analysis`` (what the
@@ -9,7 +10,10 @@ runs say), ``assessment`` (the wording of the order assessment), ``records`` (th
 study records and their tables), ``report`` (Markdown, plots, CSV), and the dynamic
 sweep: ``dynamics`` (its runs and records), ``dynamics_analysis`` (reference, errors,
 orders, step factor, recommendation) and ``dynamics_report`` (its report section, plot
-and ``dynamics.csv``).
+and ``dynamics.csv``); the ANCF's beside it: ``dynamics_ancf`` (its runs and records),
+``dynamics_ancf_analysis`` (each method's reference, the common one, the picks at 0.5 %
+and their CPU-time ratio) and ``dynamics_ancf_report`` (the section "The ANCF beside the
+VFIFE", its plot and ``dynamics_ancf.csv``).
 
 Protocol
 --------
@@ -27,6 +31,11 @@ Protocol
   static state of each element length, the same window for every run; cost and accuracy
   (hang-off tension amplitude, peak moment) against element length and time-step factor,
   against the finest length at the smallest factor (or a clean Richardson limit).
+- The ANCF beside the VFIFE (:mod:`~verification.studies.cost.dynamics_ancf`, issue 46):
+  the same heave, window and quantities by the ANCF against its element length and steps
+  per period; both methods' errors against one common reference per quantity (the finer
+  of their own references), each method's cheapest run within 0.5 % in the peak moment
+  (and in both quantities) by CPU time per simulated second, and the ratio of the two.
 - Fast and full sweep. ``riser-verify cost SCENE`` and ``reproduce all`` run the fast
   sweep (:data:`~verification.studies.cost.settings.FAST_SWEEP`: BVP tolerances, VFIFE element
   lengths, coarse mesh 5 m, dynamics; ~1/6 of the time); ``--full`` adds the rest
@@ -72,9 +81,12 @@ __all__ = ["COST_SCENES", "STUDY", "CostStudy", "Run", "Setting", "default_setti
 #: the study of the registry (:mod:`verification.studies`): one unit per scene; wall
 #: times [s] of ``reproduce all`` on 2 processes of this 2-core machine, fast sweep and
 #: (``--full``) full sweep: measured before the dynamic sweep, plus its time measured in
-#: single-scene runs (fast 17-27 s, full 45-125 s; a shared machine)
+#: single-scene runs (fast 17-27 s, full 45-125 s; a shared machine), plus the ANCF's
+#: sweep beside it measured in single-scene runs of the fast sweep (``riser-verify cost
+#: SCENE``: Yu A2 sheared 30 s, Yu A3 33 s, Wang 60 s; whole studies 100, 94, 147 s on a
+#: shared machine); its full sweep estimated at twice that (not measured)
 STUDY = Study("cost", COST_SCENES, run_unit, index_row,
-              seconds={"yu2021-a2-sheared": 63, "yu2021-a3": 61, "wang2014-baseline": 53},
-              full_seconds={"yu2021-a2-sheared": 363, "wang2014-baseline": 391,
-                            "yu2021-a3": 304},
+              seconds={"yu2021-a2-sheared": 93, "yu2021-a3": 94, "wang2014-baseline": 113},
+              full_seconds={"yu2021-a2-sheared": 423, "wang2014-baseline": 511,
+                            "yu2021-a3": 370},
               stable=False)       # its numbers are timings: the whole study is one

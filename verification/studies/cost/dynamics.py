@@ -82,6 +82,35 @@ CSV_EXTRA = ("elements", "peak_moment_s", "nodes_above_surface", "repeats", "con
              "reference", "message")
 
 
+class CpuClock:
+    """An observer of a time domain's recorder (:class:`riser.results.recorder.Recorder`):
+    the process's CPU time [s] from the run's first sample (the static state at t = 0) to
+    its last. One per run; the cost study clocks both methods' dynamic runs with it."""
+
+    def __init__(self):
+        self.first: float | None = None
+        self.last: float | None = None
+
+    def start(self, s) -> None:
+        pass
+
+    def sample(self, t, x, tangents, tension, moment_vectors, window) -> None:
+        now = time.process_time()
+        if self.first is None:
+            self.first = now
+        self.last = now
+
+    def envelope(self) -> dict:
+        return {}
+
+    def statistics(self) -> dict:
+        return {}
+
+    @property
+    def seconds(self) -> float:
+        return (self.last - self.first) if self.first is not None else float("nan")
+
+
 @dataclass(frozen=True)
 class DynSetting:
     """One dynamic run: element length [m] and time-step factor (``[vfife]
@@ -97,6 +126,8 @@ class DynRun:
 
     setting: DynSetting
     times: list = field(default_factory=list)
+    cpus: list = field(default_factory=list)         # CpuClock seconds per repeat
+    loop_walls: list = field(default_factory=list)   # the run's own info['wall_s']
     converged: bool = False
     message: str = ""
     elements: int | None = None
@@ -113,12 +144,30 @@ class DynRun:
         return float(statistics.median(self.times)) if self.times else float("nan")
 
     @property
+    def cpu_s(self) -> float:
+        """Median CPU time [s] of the run's time loop (:class:`CpuClock`)."""
+        return float(statistics.median(self.cpus)) if self.cpus else float("nan")
+
+    @property
+    def loop_wall_s(self) -> float:
+        """Median wall time [s] of the run's time loop (its info['wall_s'], the solve's
+        ``dynamic_wall_s``: without the model's set-up, which ``wall_s`` includes)."""
+        return float(statistics.median(self.loop_walls)) if self.loop_walls else float("nan")
+
+    @property
     def h(self) -> float:
         return self.setting.element_length
 
     @property
     def factor(self) -> float:
         return self.setting.factor
+
+    @property
+    def method(self) -> str:
+        return "vfife"
+
+    def label(self) -> str:
+        return f"{self.h:g} m, factor {self.factor:g}"
 
     def value(self, q: str) -> float | None:
         return getattr(self, q)
@@ -246,9 +295,12 @@ def run_dynamic(s: DynSetting, scene: Scene, repeats: int, static_cache: dict,
     vf = scene.vfife.replace(time_step_safety=s.factor, time_step=None)
     sc = scene.replace(dynamics=motion(), vfife=vf)
     for i in range(max(1, repeats)):
+        clock = CpuClock()
         t0 = time.perf_counter()
-        _, info = run_dynamics(sc, res.solver_state, bool(sc.is_planar))
+        _, info = run_dynamics(sc, res.solver_state, bool(sc.is_planar), observers=(clock,))
         run.times.append(time.perf_counter() - t0)
+        run.cpus.append(clock.seconds)
+        run.loop_walls.append(float(info["wall_s"]))
         if i == 0:
             _record(run, info, sc, res.info.get("elements"))
         if not run.converged or run.times[-1] > repeat_below:

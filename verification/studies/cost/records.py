@@ -74,6 +74,7 @@ class CostStudy:
     elapsed_s: float = 0.0
     sweep: str = "full"              # 'fast' (default), 'full' (--full), 'quick', 'given'
     dynamics: object = None          # the dynamic sweep (dynamics.DynStudy), or None
+    ancf_dynamics: object = None     # the ANCF's beside it (dynamics_ancf.AncfStudy), or None
 
     @property
     def has_order_sweep(self) -> bool:

@@ -11,7 +11,7 @@ import pandas as pd
 from verification.report.figures import new_figure, save
 from verification.report.markdown import GENERATED_NOTE, md_table
 
-from . import dynamics_report
+from . import dynamics_ancf_report, dynamics_report
 from .analysis import recommendations
 from .assessment import EXPECTED_ORDER, ORDER_BAND, order_assessment
 from .errors import QUANTITIES, QUANTITY_LABEL, family
@@ -96,6 +96,7 @@ def report_markdown(st: CostStudy) -> str:
     L += _order_section(st)
     L += _scaling_section(st)
     L += dynamics_report.section(st, st.dynamics)
+    L += dynamics_ancf_report.section(st, st.ancf_dynamics)
     L += ["", "## Runs", ""]
     for method in ("bvp", "vfife"):
         rows = []
@@ -117,7 +118,8 @@ def report_markdown(st: CostStudy) -> str:
     L += ["Files: `runs.csv` (one row per run: " + ", ".join(f"`{c}`" for c in RUN_COLUMNS)
           + ", then " + ", ".join(f"`{c}`" for c in EXTRA_COLUMNS) + "), `values.csv` (the "
           "raw quantities of every run and of the reference)."
-          + dynamics_report.files_line(st.dynamics), ""]
+          + dynamics_report.files_line(st.dynamics)
+          + dynamics_ancf_report.files_line(st.ancf_dynamics), ""]
     return "\n".join(L)
 
 
@@ -343,13 +345,15 @@ def _plots(st: CostStudy, out: Path) -> None:
 
 def write(st: CostStudy, out_dir: str | Path) -> None:
     """``runs.csv``, ``values.csv``, ``report.md``, the plots and (with a dynamic sweep)
-    ``dynamics.csv`` and its figure into ``out_dir``."""
+    ``dynamics.csv`` and its figure, (with the ANCF's beside it) ``dynamics_ancf.csv``
+    and its figure into ``out_dir``."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     st.frame().to_csv(out / "runs.csv", index=False, float_format="%.6g")
     st.values_frame().to_csv(out / "values.csv", index=False, float_format="%.10g")
     _plots(st, out)
     dynamics_report.write(st, st.dynamics, out)
+    dynamics_ancf_report.write(st, st.ancf_dynamics, out)
     (out / "report.md").write_text(report_markdown(st))
 
 

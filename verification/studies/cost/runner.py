@@ -18,8 +18,10 @@ from vfife.dynamics.run import DynamicsOutcome, run_dynamics
 from vfife.solver import compile_seconds
 
 from . import dynamics as dyn
+from . import dynamics_ancf as dyn_ancf
 from .analysis import analyse, cost_scaling
 from .dynamics_analysis import analyse as analyse_dynamics
+from .dynamics_ancf_analysis import analyse as analyse_ancf
 from .errors import densified, distance, rel_errors
 from .records import CostStudy, Run
 from .report import write
@@ -105,7 +107,7 @@ def run_setting(s: Setting, scene: Scene, repeats: int, compile_s: float,
 
 def study(scene: Scene, *, repeats: int = 3, quick: bool = False, element_lengths=None,
           settings: list[Setting] | None = None, progress=None,
-          full: bool = False, dynamics=None) -> CostStudy:
+          full: bool = False, dynamics=None, ancf=None) -> CostStudy:
     """Run the study on ``scene`` (see :mod:`verification.studies.cost`): ``settings`` (default
     :func:`~verification.studies.cost.settings.default_settings` of ``quick``, ``element_lengths``
     and ``full``, the order sweep planned from the reference's asymptotic length),
@@ -115,7 +117,10 @@ def study(scene: Scene, *, repeats: int = 3, quick: bool = False, element_length
     a :class:`~verification.runtime.progress.Progress` draws it), None or False: quiet.
     ``dynamics``: the dynamic sweep (:mod:`verification.studies.cost.dynamics`); None: the
     default of the sweep (fast, full or quick; none with given ``settings``), False: none,
-    or (element length, step factor) pairs."""
+    or (element length, step factor) pairs. ``ancf``: the ANCF's dynamic sweep beside it
+    (:mod:`verification.studies.cost.dynamics_ancf`), judged with it against a common
+    reference; None: the sweep's default when the VFIFE's runs by default, else none;
+    False: none; or (element length, steps per period) pairs."""
     t_start = time.perf_counter()
     repeats = max(1, int(repeats))
     notes = []
@@ -129,9 +134,10 @@ def study(scene: Scene, *, repeats: int = 3, quick: bool = False, element_length
     sweep = "given" if settings is not None else "quick" if quick else "full" if full \
         else "fast"
     dyn_settings = _dynamic_plan(fixed, sweep, dynamics, element_lengths)
-    runs, ref, dyn_runs, static_s, sweep_s = _solve_all(
+    ancf_settings = _ancf_plan(fixed, sweep, dynamics, ancf)
+    runs, ref, dyn_runs, static_s, sweep_s, ancf_runs, ancf_s = _solve_all(
         scene, fixed, settings, (quick, element_lengths, full), repeats, compile_s,
-        progress or None, dyn_settings)
+        progress or None, dyn_settings, ancf_settings)
     ref_sm = summarize(ref.profile)
     depth = reference_depth(fixed, ref_sm)
     ref_values = raw_values(ref.profile)
@@ -149,6 +155,11 @@ def study(scene: Scene, *, repeats: int = 3, quick: bool = False, element_length
                                    sweep if dynamics is None else "given",
                                    dyn.surface_piercing(fixed), static_s, elapsed_s=sweep_s)
         analyse_dynamics(st.dynamics)
+    if ancf_settings:
+        st.ancf_dynamics = dyn_ancf.AncfStudy(
+            ancf_runs, sweep if ancf is None else "given", elapsed_s=ancf_s[0],
+            warm_up_s=ancf_s[1])
+        analyse_ancf(st.ancf_dynamics, st.dynamics)
     if eq.paper is not None:
         psm = eq.paper.summary()
         st.paper_difference = {q: (psm[q] - ref_sm[q]) / abs(ref_sm[q])
@@ -171,20 +182,33 @@ def _dynamic_plan(fixed: Scene, sweep: str, dynamics, element_lengths=None) -> l
             for s in dynamics]
 
 
+def _ancf_plan(fixed: Scene, sweep: str, dynamics, ancf) -> list:
+    """The ANCF's dynamic runs (see :func:`study`'s ``ancf``)."""
+    if ancf is None:
+        default = dynamics is None and sweep != "given"
+        return dyn_ancf.ancf_settings(fixed, sweep) if default else []
+    if ancf is False:
+        return []
+    return [s if isinstance(s, dyn_ancf.AncfSetting) else dyn_ancf.AncfSetting(
+        float(s[0]), int(s[1])) for s in ancf]
+
+
 def _solve_all(scene: Scene, fixed: Scene, settings, plan: tuple, repeats: int,
-               compile_s: float, progress, dyn_settings=()) -> tuple:
+               compile_s: float, progress, dyn_settings=(), ancf_settings=()) -> tuple:
     """Every setting solved on ``fixed`` (BVP first); without given ``settings`` the VFIFE
     ones are planned once the reference is known, from ``plan`` = (quick,
     element_lengths, full) of :func:`default_settings`; then the dynamic runs
-    ``dyn_settings`` from the static states. Returns (runs, reference, dynamic runs, the
-    seconds of statics solved for the dynamics only (element length -> s), the wall time
-    of the dynamic sweep [s])."""
+    ``dyn_settings`` from the static states, and the ANCF's ``ancf_settings``. Returns
+    (runs, reference, dynamic runs, the seconds of statics solved for the dynamics only
+    (element length -> s), the wall time of the dynamic sweep [s], the ANCF's runs, (the
+    wall time of its sweep [s], of its warm-up within it [s]))."""
     given = settings is not None
     quick, element_lengths, full = plan
     if settings is None:
         settings = default_settings(fixed, quick, element_lengths, full=full)
     settings = sorted(settings, key=lambda s: METHOD_ORDER[s.method])
-    dyn_weights = [dyn.predicted_cost(fixed, s) for s in dyn_settings]
+    dyn_weights = [dyn.predicted_cost(fixed, s) for s in dyn_settings] + [
+        dyn_ancf.predicted_cost(fixed, s) for s in ancf_settings]
     prog = RunCounter([predicted_cost(s) for s in settings] + dyn_weights, progress) \
         if progress is not None else None
     runs: list[Run] = []
@@ -216,7 +240,20 @@ def _solve_all(scene: Scene, fixed: Scene, settings, plan: tuple, repeats: int,
         if prog:
             prog.step(f"vfife dynamics {s.element_length:g} m, factor {s.factor:g}: "
                       f"{r.wall_s:.3g} s" + ("" if r.converged else ", failed"))
-    return runs, ref, dyn_runs, static_s, time.perf_counter() - t_dyn
+    t_ancf = time.perf_counter()
+    sweep_s = t_ancf - t_dyn
+    ancf_runs = []
+    warm_s = dyn_ancf.warm_up(fixed, ancf_settings[0]) if ancf_settings else 0.0
+    for s in ancf_settings:
+        if ancf_runs and ancf_runs[-1].refused:       # the scene, not the run: said once
+            break
+        r = dyn_ancf.run_ancf(s, fixed, repeats, REPEAT_BELOW_S)
+        ancf_runs.append(r)
+        if prog:
+            prog.step(f"ancf dynamics {s.element_length:g} m, {s.steps_per_period} a "
+                      f"period: {r.wall_s:.3g} s" + ("" if r.converged else ", failed"))
+    return (runs, ref, dyn_runs, static_s, sweep_s, ancf_runs,
+            (time.perf_counter() - t_ancf, warm_s))
 
 
 def _reference(runs: list, scene: Scene) -> Run:

@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 from riser.model.scene import Scene
 
 from .dynamics import FAST_DYNAMICS, FULL_DYNAMICS
+from .dynamics_ancf import FAST_ANCF, FULL_ANCF
 
 #: scenes of the study (``riser-verify reproduce all``)
 COST_SCENES = ("wang2014-baseline", "yu2021-a3", "yu2021-a2-sheared")
@@ -49,11 +50,11 @@ FULL_ADDS = ("the BVP initial-mesh and node-cap rows, the other VFIFE relaxation
              "(time-step safety, static tolerance, coarse meshes of 2 and 20 m, "
              "rotational-inertia scale), the order sweep at tight tolerances "
              "(`element_length_tight`) with its relaxation check "
-             "(`element_length_tight_check`), and " + FULL_DYNAMICS)
+             "(`element_length_tight_check`), " + FULL_DYNAMICS + ", and " + FULL_ANCF)
 #: what the fast sweep runs, in words (the report says it)
 FAST_SWEEP = ("the BVP tolerance sweep, the VFIFE element-length sweep at the default "
               "tolerances, mesh sequencing from a 5 m coarse mesh at 2 m, one second "
-              "of dynamics per element length, and " + FAST_DYNAMICS)
+              "of dynamics per element length, " + FAST_DYNAMICS + ", and " + FAST_ANCF)
 
 
 @dataclass

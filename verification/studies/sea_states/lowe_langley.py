@@ -1,6 +1,7 @@
 """Lowe and Langley (2006) jumper in regular waves, cases 4-6 (``riser-verify reproduce
-sea_states``, unit ``lowe-langley``): the VFIFE's hang-off tension against the published
-series (docs/references.md, Lowe and Langley 2006).
+sea_states``, unit ``lowe-langley``): the hang-off tension of both time domains, the
+VFIFE's and the ANCF's, against the published series (docs/references.md, Lowe and
+Langley 2006).
 
 The published series are those MoorDyn-C digitised for its validation test
 (tests/Mooring/lowe_and_langley_2006/Case N.csv of MoorDyn), transcribed here by hand at
@@ -10,8 +11,8 @@ as the test does, so the series line up in time with no fitted shift. MoorDyn's 
 allows 1 kN against them (:data:`TOLERANCE_KN`).
 
 Files in ``reports/sea_states/lowe-langley/``: ``tension.csv`` (case, t_ref_s, published,
-vfife [kN]), ``cases.csv`` (per case: the worst difference and when, the static and mean
-tension, the run's wall time), ``tension.png`` and ``report.md``.
+vfife, ancf [kN]), ``cases.csv`` (per case: each method's worst difference and when, the
+static and mean tension, the runs' wall times), ``tension.png`` and ``report.md``.
 """
 
 from __future__ import annotations
@@ -62,12 +63,16 @@ def reference(case: int) -> tuple[np.ndarray, np.ndarray]:
     return START + t, np.asarray(REFERENCE[case])
 
 
-def run_case(case: int) -> dict:
-    """Solve case ``case`` with the VFIFE: the run's time series, the VFIFE's tension at
-    the published times [kN] and the worst difference."""
+#: the time domains compared with the published series
+METHODS = ("vfife", "ancf")
+
+
+def run_case(case: int, name: str = "vfife") -> dict:
+    """Solve case ``case`` with the time domain ``name``: the run's time series, its
+    tension at the published times [kN] and the worst difference."""
     sc = resolve(f"lowe-langley-case{case}")
     t0 = time.perf_counter()
-    r = method("vfife").solve(sc)
+    r = method(name).solve(sc)
     wall = time.perf_counter() - t0
     if not r.converged:
         return {"case": case, "status": r.status.value, "message": r.message}
@@ -84,35 +89,46 @@ def run_case(case: int) -> dict:
 
 
 def run_unit(out: Path, note: str = "") -> str:
-    """Cases 4-6 into ``out``; returns the log line."""
+    """Cases 4-6 by both time domains into ``out``; returns the log line."""
     t0 = time.perf_counter()
     out.mkdir(parents=True, exist_ok=True)
     results = [run_case(c) for c in CASES]
+    second = {c: run_case(c, "ancf") for c in CASES}
     rows, table = [], []
     for res in results:
-        if res["status"] != Status.CONVERGED:
-            table.append({"case": res["case"], "verdict": "failed", "note": res["message"]})
+        an = second[res["case"]]
+        if res["status"] != Status.CONVERGED or an["status"] != Status.CONVERGED:
+            bad = res if res["status"] != Status.CONVERGED else an
+            table.append({"case": res["case"], "verdict": "failed", "note": bad["message"]})
             continue
         rows += [{"case": res["case"], "t_ref_s": tr - START, "published_kN": p,
-                  "vfife_kN": v} for tr, p, v in zip(res["t"], res["published"], res["vfife"])]
+                  "vfife_kN": v, "ancf_kN": a}
+                 for tr, p, v, a in zip(res["t"], res["published"], res["vfife"],
+                                        an["vfife"])]
         table.append({"case": res["case"], "heading_deg": res["heading_deg"],
                       "verdict": "pass" if res["worst_kN"] < TOLERANCE_KN else "fail",
                       "worst_kN": res["worst_kN"], "worst_at_t_ref_s": res["worst_at_s"] - START,
                       "tolerance_kN": TOLERANCE_KN, "static_kN": res["static_kN"],
                       "mean_published_kN": res["mean_published_kN"],
                       "mean_vfife_kN": res["mean_vfife_kN"], "wall_s": res["wall_s"],
-                      "note": ""})
+                      "note": "",
+                      "ancf_verdict": "pass" if an["worst_kN"] < TOLERANCE_KN else "fail",
+                      "ancf_worst_kN": an["worst_kN"],
+                      "ancf_worst_at_t_ref_s": an["worst_at_s"] - START,
+                      "mean_ancf_kN": an["mean_vfife_kN"], "ancf_wall_s": an["wall_s"]})
     pd.DataFrame(rows).to_csv(out / "tension.csv", index=False)
     df = pd.DataFrame(table)
     df.to_csv(out / "cases.csv", index=False)
-    _plot(results, out / "tension.png")
+    _plot(results, out / "tension.png", second)
     _report(df, out / "report.md", note)
     passed = int((df["verdict"] == "pass").sum())
-    return (f"sea_states lowe-langley: {passed}/{len(CASES)} cases within "
-            f"{TOLERANCE_KN:g} kN ({time.perf_counter() - t0:.1f} s)")
+    passed_an = int((df.get("ancf_verdict") == "pass").sum()) if "ancf_verdict" in df else 0
+    return (f"sea_states lowe-langley: VFIFE {passed}/{len(CASES)}, ANCF "
+            f"{passed_an}/{len(CASES)} cases within {TOLERANCE_KN:g} kN "
+            f"({time.perf_counter() - t0:.1f} s)")
 
 
-def _plot(results: list, path: Path) -> None:
+def _plot(results: list, path: Path, second: dict | None = None) -> None:
     fig, axes = new_figure(len(results), 1, size=(9.0, 2.6 * len(results)))
     for ax, res in zip(axes[:, 0], results):
         if res["status"] != Status.CONVERGED:
@@ -122,11 +138,19 @@ def _plot(results: list, path: Path) -> None:
         sel = ts["time"] >= START
         ax.plot(ts["time"][sel] - START, ts["hang_off_tension"][sel] / 1e3, "-",
                 label="VFIFE")
+        an = (second or {}).get(res["case"])
+        if an is not None and an["status"] == Status.CONVERGED:
+            ta = an["series"]
+            sa = ta["time"] >= START
+            ax.plot(ta["time"][sa] - START, ta["hang_off_tension"][sa] / 1e3, "--",
+                    label="ANCF")
         ax.plot(res["t"] - START, res["published"], "o", ms=3.5,
                 label="published (digitised)")
         ax.set_ylabel("hang-off tension [kN]")
         ax.set_title(f"case {res['case']}: wave heading {res['heading_deg']:g} deg, worst "
-                     f"{res['worst_kN']:.2f} kN")
+                     f"{res['worst_kN']:.2f} kN (VFIFE)"
+                     + (f", {an['worst_kN']:.2f} kN (ANCF)" if an is not None
+                        and an["status"] == Status.CONVERGED else ""))
         ax.legend(loc="lower right", fontsize=8)
     axes[-1, 0].set_xlabel("t - 20 s [s]")
     save(fig, path)
@@ -138,7 +162,9 @@ def _report(df: pd.DataFrame, path: Path, note: str) -> None:
              "The flexible jumper (170 m, OD 0.396 m, 165 kg/m, EA 500 MN, EI 120.8 kN m2, "
              "C_d 1, C_a 1), fixed at both ends 5 m and 55 m below the surface of 100 m of "
              "water, in one Airy wave of amplitude 5 m and period 10 s at 0, 45 and 90 deg "
-             "to its plane; the VFIFE's hang-off tension against the published series as "
+             "to its plane; the hang-off tension of both time domains (the VFIFE's "
+             "explicit steps; the ANCF's cubic elements of 2 m and implicit steps of T/100) "
+             "against the published series as "
              "MoorDyn-C's validation test digitised them (30 s after a 20 s start-up; "
              f"MoorDyn's test allows {TOLERANCE_KN:g} kN). Wave phases referred to the "
              "hang-off as the test does; linear kinematics below the mean level (vertical "
@@ -148,14 +174,17 @@ def _report(df: pd.DataFrame, path: Path, note: str) -> None:
     rows = []
     for r in df.itertuples():
         if r.verdict == "failed":
-            rows.append((str(r.case), "", "failed", r.note, "", "", ""))
+            rows.append((str(r.case), "", "failed", r.note, "", "", "", "", "", "", ""))
             continue
         rows.append((str(r.case), f"{r.heading_deg:g}", r.verdict,
                      f"{r.worst_kN:.2f} at {r.worst_at_t_ref_s:.1f} s",
+                     r.ancf_verdict, f"{r.ancf_worst_kN:.2f} at {r.ancf_worst_at_t_ref_s:.1f} s",
                      f"{r.mean_published_kN:.2f}", f"{r.mean_vfife_kN:.2f}",
-                     timed(r.wall_s, ".1f", "")))
-    lines.append(md_table(("case", "heading [deg]", "verdict", "worst |VFIFE - published| "
-                           "[kN]", "mean published [kN]", "mean VFIFE [kN]",
-                           "VFIFE wall [s]"), rows))
-    lines += ["", "![hang-off tension, VFIFE and published](tension.png)"]
+                     f"{r.mean_ancf_kN:.2f}", timed(r.wall_s, ".1f", ""),
+                     timed(r.ancf_wall_s, ".1f", "")))
+    lines.append(md_table(("case", "heading [deg]", "VFIFE", "worst |VFIFE - published| "
+                           "[kN]", "ANCF", "worst |ANCF - published| [kN]",
+                           "mean published [kN]", "mean VFIFE [kN]", "mean ANCF [kN]",
+                           "VFIFE wall [s]", "ANCF wall [s]"), rows))
+    lines += ["", "![hang-off tension, VFIFE, ANCF and published](tension.png)"]
     path.write_text("\n".join(lines) + "\n")

@@ -51,7 +51,7 @@ def run_unit(out: Path, note: str = "") -> str:
                 judged = res.rows
                 walls = (res.fd_wall_s, res.vfife_wall_s)
             else:
-                res = compare_dynamics(sc)
+                res = compare_dynamics(sc, ancf=True)
                 dynamics_report.write(res, folder)
                 judged = res.results[0].rows
                 walls = (res.results[0].fd_wall_s, res.results[0].vfife_wall_s)

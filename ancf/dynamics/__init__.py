@@ -1,0 +1,1 @@
+"""The ANCF time domain: one implicit step (integrator.py), the run (run.py)."""
