@@ -21,7 +21,8 @@ from __future__ import annotations
 import sys
 
 try:                             # Ctrl-C while the program loads: one line, 130
-    from verification.runtime.interrupts import (caused_by_interrupt, count_interrupts,
+    from verification.runtime.interrupts import (arm_swallowed_interrupts,
+                                                 caused_by_interrupt, count_interrupts,
                                                  exit_quietly_on_interrupt, interrupts_seen,
                                                  keep_swallowed_interrupts, reraise_interrupt)
     count_interrupts()           # from here on, no Ctrl-C is lost (see main)
@@ -32,7 +33,7 @@ try:
     import argparse
     import os
 
-    from riser.errors import SceneError, SolveFailed, UnsupportedSceneError
+    from riser.errors import SceneError, SolveFailed, UnsupportedSceneError, one_line
     from verification import peers
 
     from . import bench, compare, design, solve, studies, sweep
@@ -72,9 +73,11 @@ def main(argv: list[str] | None = None) -> int:
     ends in 130, said in the line (:func:`~verification.runtime.interrupts.count_interrupts`:
     counted from the program's imports on)."""
     seen = 0 if argv is None else interrupts_seen()
+    if argv is None:                     # the program: a Ctrl-C a library swallowed is
+        arm_swallowed_interrupts()       # raised at the run's next progress report
     try:
         keep_swallowed_interrupts()
-        code = _run(argv)
+        code = _run(argv, seen)
     except KeyboardInterrupt as exc:     # the message says what was kept (sweep)
         if argv is None:                 # a second Ctrl-C now: 130 at once, no traceback
             exit_quietly_on_interrupt(True)
@@ -89,23 +92,37 @@ def main(argv: list[str] | None = None) -> int:
     return code
 
 
-def _run(argv: list[str] | None) -> int:
+def _run(argv: list[str] | None, seen: int) -> int:
+    """The command's exit code; ``seen``: the Ctrl-Cs counted before it began (an error
+    after a later one is that Ctrl-C's doing: one line, 130)."""
     try:
         args = build_parser().parse_args(argv)
     except SystemExit as exc:            # --help (0), or the parser's one-line error (2)
         return exc.code if isinstance(exc.code, int) else 2
     try:
         return args.func(args)
-    except (SceneError, UnsupportedSceneError) as exc:
+    except (SceneError, UnsupportedSceneError, SolveFailed) as exc:
+        if interrupts_seen() > seen:     # a swallowed Ctrl-C came first: its line alone
+            return _interrupted(exc)
+        if isinstance(exc, SolveFailed):
+            err(f"{exc} ({exc.status.value})")
+            return 1
         err(str(exc))
         return 2
-    except SolveFailed as exc:
-        err(f"{exc} ({exc.status.value})")
-        return 1
     except BrokenPipeError:        # the reader went away (`riser-verify scenes | head`)
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())   # no flush error
         return 141                 # 128 + SIGPIPE, as a shell pipeline reports it
     except Exception as exc:       # noqa: BLE001 - one line, never a traceback
         reraise_interrupt(exc)     # Ctrl-C inside a Numba function (a SystemError): 130
+        if interrupts_seen() > seen:   # a Ctrl-C a library turned into its own error (an
+            return _interrupted(exc)   # extension module's import: an ImportError)
         err(f"unexpected {type(exc).__name__}: {exc} (please report it with the command)")
         return 1
+
+
+def _interrupted(exc: Exception) -> int:
+    """One line for an error that followed a Ctrl-C a library caught (the interrupt's doing,
+    whatever the error says); 130."""
+    err(f"interrupted: the Ctrl-C was caught by a library on its way, and the command then "
+        f"failed ({type(exc).__name__}: {one_line(str(exc))[:200]})")
+    return 130

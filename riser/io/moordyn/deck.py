@@ -26,6 +26,7 @@ seabed at Z = -WtrDpth; SI units (m, kg, N, s).
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -337,9 +338,9 @@ def _line_type(src: str, tok: list[str], no: int) -> DeckLineType:
     for part in ba.split("|"):
         if is_comma_number(part):
             raise DeckError(src, no, comma_message(f"{what}: BA/-zeta", part))
-        if not is_number(part):
-            raise DeckError(src, no, f"{what}: BA/-zeta: {ba!r} is not a number (N s, or "
-                            "minus a fraction of critical damping)")
+        if not is_number(part) or not math.isfinite(float(part)):
+            raise DeckError(src, no, f"{what}: BA/-zeta: {ba!r} is not a finite number (N s, "
+                            "or minus a fraction of critical damping)")
     cl = number(src, no, f"{what}: Cl", tok[10], ge=0.0) if len(tok) > 10 else 0.0
     return DeckLineType(name=name, diameter=v["Diam"], mass=v["Mass/m"], EA=v["EA"], BA=ba,
                         EI=v["EI"], Cd=v["Cd"], Ca=v["Ca"], CdAx=v["CdAx"], CaAx=v["CaAx"],
