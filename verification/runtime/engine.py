@@ -176,12 +176,15 @@ class Engine:
     jobs: int = 1
     scheduler: str | None = None
     client: object = field(default=None, repr=False)
+    #: ``jobs = 1`` in a pool of one worker process instead of this process (a bench's
+    #: like-for-like baseline: the workers' start and their one BLAS thread each)
+    pool: bool = False
 
     def describe(self) -> str:
         if self.scheduler:
             return f"Dask cluster at {self.scheduler} ({self.workers()} worker(s))"
         if self.jobs == 1:
-            return "this process"
+            return "1 local worker process" if self.pool else "this process"
         return f"{self.jobs} local worker processes"
 
     def workers(self) -> int:
@@ -245,7 +248,7 @@ class Engine:
         ``names``: the units' keys on a Dask cluster (its dashboard shows them)."""
         if self.scheduler:
             yield from self._dask(fn, args, names)
-        elif self.jobs == 1:
+        elif self.jobs == 1 and not self.pool:
             for i, a in enumerate(args):
                 try:
                     if progress is not None:
