@@ -21,8 +21,6 @@ from __future__ import annotations
 import sys
 
 try:                             # Ctrl-C while the program loads: one line, 130
-    from verification.runtime.engine import one_blas_thread
-    one_blas_thread()            # before NumPy loads: --jobs 1 computes as a worker does
     from verification.runtime.interrupts import (arm_swallowed_interrupts,
                                                  caused_by_interrupt, count_interrupts,
                                                  exit_quietly_on_interrupt, interrupts_seen,

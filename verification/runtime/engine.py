@@ -40,19 +40,6 @@ from .scheduler_probe import PROBE_TIMEOUT_S, ProbeFailed, probe
 #: cores took 317 s and 536 s of CPU with them, 308 s and 513 s without, with the same
 #: numbers). Dask workers are started by their owner: docs/sweeps.md says to set it there.
 WORKER_ENV = {"OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
-
-
-def one_blas_thread() -> None:
-    """:data:`WORKER_ENV` for this process too, unless already set: called by the program
-    (``riser-verify``) before NumPy loads, so that a unit run in this process (``--jobs
-    1``) computes as it does on a worker. A BLAS with two threads rounds some sums in
-    another order: ``reproduce design --jobs 1`` differed from the committed reports
-    (written by workers) in the sixth digit of two values out of some 70 000 (a BVP
-    curvature near zero, a VFIFE damage), and it was slower (the fatigue bench's units:
-    125 s with the default threads, 113 s with one). Without effect once NumPy is loaded
-    (a test, a notebook)."""
-    for key, value in WORKER_ENV.items():
-        os.environ.setdefault(key, value)
 #: seconds to wait for a Dask scheduler to answer (the client, and its first worker)
 CONNECT_TIMEOUT_S = 10.0
 #: seconds a local worker is given to end after SIGTERM when a run is interrupted

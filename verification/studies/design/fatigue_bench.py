@@ -10,10 +10,10 @@ reason, without the extra ``[cluster]``). Timed: the whole run with the engine's
 (pool spawn, imports and Numba cache loads in fresh workers, the client's connection;
 the cluster's own start apart). The damage per year along s of every engine is compared
 with the first's, bit for bit (``identical``). The speed-up is over the one worker
-process, which starts as the others do; every engine computes with one BLAS thread
-(:func:`verification.runtime.engine.one_blas_thread`: before it, this process's default
-threads made the same units 10 % slower in one measurement on 2 cores, 125 s against 113
-s, which a ratio over this process counted as parallelism: 2.17x). Both ratios are
+process, which starts as the others do and has one BLAS thread as they have: this
+process's default BLAS threads made the same units 10 % slower in one measurement on 2
+cores (125 s against 113 s with ``OPENBLAS_NUM_THREADS=1``; equal, 107 s each, in a later
+bench run), which a ratio over this process would count as parallelism; both ratios are
 recorded.
 
 The default diagram (:func:`bench_scene`) is ``scr-steel-fatigue``'s line and sea made
@@ -148,14 +148,12 @@ def measure(scene, prog) -> dict:
             "engines": engines,
             "notes": [f"Measured on this machine, {os.cpu_count()} core(s): with 2 cores 2 "
                       "workers cannot exceed 2x, less when other processes run (the load "
-                      "averages). local_1 runs in this process (as --jobs 1), the others in "
-                      "fresh worker processes, each with one BLAS thread unless the "
-                      "environment says otherwise (OPENBLAS_NUM_THREADS: "
-                      f"{os.environ.get('OPENBLAS_NUM_THREADS', 'unset')}); speed_up is "
-                      "over local_1_process (one worker process: the same start as the "
-                      "others, so the ratio is the parallelism's alone), "
-                      "speed_up_over_this_process over local_1 (what --jobs N gains over "
-                      "--jobs 1). Every engine runs every cell's "
+                      "averages). local_1 runs in this process (as --jobs 1, with this "
+                      "process's BLAS threads), the others in fresh worker processes, one "
+                      "BLAS thread each; speed_up is over local_1_process (one worker "
+                      "process: the same start and BLAS threads as the others, so the "
+                      "ratio is the parallelism's alone), speed_up_over_this_process over "
+                      "local_1 (what --jobs N gains over --jobs 1). Every engine runs every cell's "
                       "FD and one realisation of its time domain (VFIFE) as units, into a "
                       "fresh folder. wall_time_s includes the engine's start, not the Dask "
                       "cluster's own (cluster_start_s). identical: the damage per year "
