@@ -12,6 +12,7 @@ gives, and does not depend on how those classes are built.
 - :func:`straight`: a weightless line stretched horizontally between ends at one height;
 - :func:`catenary`: a 150 m catenary riser with a touchdown on an elastic seabed;
 - :func:`rod_toml` / :func:`rod`: the 1 cm rod of the closed-form tests (TOML);
+- :func:`steel_line_toml`: the 110 m steel line with ``[design]`` of the design tests (TOML);
 - :func:`scene`: dict -> Scene.
 """
 
@@ -123,3 +124,32 @@ def rod_toml(*, mass, EI, L, ends: str, EA=1.0e9, name: str = "rod", seabed=None
 def rod(**kw):
     """The Scene of :func:`rod_toml` (source ``rod.toml``)."""
     return parse_scene(rod_toml(**kw), "rod.toml")
+
+
+def steel_line_toml(name: str, *, line_type: str = "", design: str = "", tail: str = "") -> str:
+    """The 110 m steel pipe (8 in, 19.1 mm wall, X65 strengths) from a seabed anchor to a
+    hang-off 80 m across and 50 m up in 60 m of water, with an empty-or-given ``[design]``
+    table, as TOML text: the line of the design-check, fatigue-verdict, bend-limit and
+    station tests. ``line_type``: more lines of ``[line_types.steel]``; ``design``: lines of
+    ``[design]``; ``tail``: tables after it. Each ends in a newline."""
+    return f"""
+name = "{name}"
+[environment]
+water_depth = 60.0
+[seabed]
+stiffness = 1.0e5
+[line_types.steel]
+outer_diameter = 0.2032
+wall_thickness = 0.0191
+density = 7860.0
+youngs_modulus = 2.06e11
+yield_strength = 4.48e8
+tensile_strength = 5.31e8
+{line_type}[[segments]]
+line_type = "steel"
+length = 110.0
+[ends]
+anchor = [0.0, 0.0]
+hang_off = [80.0, 50.0]
+[design]
+{design}{tail}"""

@@ -18,29 +18,11 @@ from riser.results.profile import Profile
 from riser.results.result import DynamicsResult, SolveResult, Status
 from verification.methods import method
 
-#: a steel line of 110 m with [design] (tests/test_design_dynamics.py's) and its top
+from builders import steel_line_toml
+
+#: a steel line of 110 m with [design] (tests/builders.py) and its top
 #: heaving 0.5 m in 6 s for 12 s
-LINE = """
-name = "design-dynamics"
-[environment]
-water_depth = 60.0
-[seabed]
-stiffness = 1.0e5
-[line_types.steel]
-outer_diameter = 0.2032
-wall_thickness = 0.0191
-density = 7860.0
-youngs_modulus = 2.06e11
-yield_strength = 4.48e8
-tensile_strength = 5.31e8
-[[segments]]
-line_type = "steel"
-length = 110.0
-[ends]
-anchor = [0.0, 0.0]
-hang_off = [80.0, 50.0]
-[design]
-"""
+LINE = steel_line_toml("design-dynamics")
 DYNAMICS = """
 [dynamics]
 duration = 12.0

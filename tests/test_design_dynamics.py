@@ -23,27 +23,9 @@ from riser.design.spectral_fatigue import closed_form_narrow_band
 from riser.design.wall import wall_at
 from riser.io.scene_file import parse_scene
 
-LINE = """
-name = "design-dynamics"
-[environment]
-water_depth = 60.0
-[seabed]
-stiffness = 1.0e5
-[line_types.steel]
-outer_diameter = 0.2032
-wall_thickness = 0.0191
-density = 7860.0
-youngs_modulus = 2.06e11
-yield_strength = 4.48e8
-tensile_strength = 5.31e8
-[[segments]]
-line_type = "steel"
-length = 110.0
-[ends]
-anchor = [0.0, 0.0]
-hang_off = [80.0, 50.0]
-[design]
-"""
+from builders import steel_line_toml
+
+LINE = steel_line_toml("design-dynamics")
 FATIGUE = """
 [design.fatigue]
 sn_curve = "F"

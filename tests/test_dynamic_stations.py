@@ -39,32 +39,10 @@ from verification import cli
 from verification.catalog import resolve
 from verification.methods import method
 
-LINE = """
-name = "stations"
-[environment]
-water_depth = 60.0
-[seabed]
-stiffness = 1.0e5
-[line_types.steel]
-outer_diameter = 0.2032
-wall_thickness = 0.0191
-density = 7860.0
-youngs_modulus = 2.06e11
-yield_strength = 4.48e8
-tensile_strength = 5.31e8
-drag_normal = 1.0
-[[segments]]
-line_type = "steel"
-length = 110.0
-[ends]
-anchor = [0.0, 0.0]
-hang_off = [80.0, 50.0]
-[design]
-[vfife]
-element_length = 5.0
-[ancf]
-element_length = 5.0
-"""
+from builders import steel_line_toml
+
+LINE = steel_line_toml("stations", line_type="drag_normal = 1.0\n",
+                       tail="[vfife]\nelement_length = 5.0\n[ancf]\nelement_length = 5.0\n")
 #: the 3D variant: a current across the plane of the ends
 CURRENT_90 = """
 [environment.current]

@@ -36,30 +36,11 @@ from verification.studies.design import fatigue_report, fatigue_scatter
 from verification.studies.design.fatigue import (ANCF, DESIGN_ESTIMATE, ESTIMATES,
                                                  ScatterFatigue, SeaStateFatigue, verdicts)
 
+from builders import steel_line_toml
+
 ROOT = Path(__file__).resolve().parents[1]
 
-LINE = """
-name = "fatigue-verdict"
-[environment]
-water_depth = 60.0
-[seabed]
-stiffness = 1.0e5
-[line_types.steel]
-outer_diameter = 0.2032
-wall_thickness = 0.0191
-density = 7860.0
-youngs_modulus = 2.06e11
-yield_strength = 4.48e8
-tensile_strength = 5.31e8
-[[segments]]
-line_type = "steel"
-length = 110.0
-[ends]
-anchor = [0.0, 0.0]
-hang_off = [80.0, 50.0]
-[design]
-design_life = 20.0
-"""
+LINE = steel_line_toml("fatigue-verdict", design="design_life = 20.0\n")
 FATIGUE = """
 [design.fatigue]
 sn_curve = "F"
