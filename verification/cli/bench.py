@@ -54,17 +54,9 @@ def _bench_sweep(args, out: Path) -> int:
     sweep = load_sweep(args.sweep)
     with progress_for(args, "bench --sweep") as prog:
         record = measure(sweep, prog)
-    out.mkdir(parents=True, exist_ok=True)
-    (out / "sweep.json").write_text(json.dumps(record, indent=2) + "\n")
-    for line in summary_lines(record):
-        print(line)
-    print(f"wrote {out}/sweep.json")
-    failed = [f"{k}: {e['error']}" for k, e in record["engines"].items() if "error" in e]
-    failed += [f"{k}: {e['cases_failed']} case(s) failed" for k, e in record["engines"].items()
-               if e.get("cases_failed")]
-    for f in failed:
-        print(f"error: bench --sweep: {f}", file=sys.stderr)
-    return 1 if failed else 0
+    failed = [f"{k}: {e['cases_failed']} case(s) failed" for k, e in record["engines"].items()
+              if e.get("cases_failed")]
+    return _write_engines(out, "sweep", record, summary_lines(record), failed)
 
 
 def _bench_fatigue(args, out: Path) -> int:
@@ -78,16 +70,25 @@ def _bench_fatigue(args, out: Path) -> int:
         fatigue.require_fatigue(scene)
     with progress_for(args, "bench --fatigue") as prog:
         record = measure(scene, prog)
+    failed = [f"{k}: the damage along s differs from one local worker's"
+              for k, e in record["engines"].items() if e.get("identical") is False]
+    return _write_engines(out, "fatigue", record, summary_lines(record), failed)
+
+
+def _write_engines(out: Path, name: str, record: dict, lines: list[str],
+                   failed: list[str]) -> int:
+    """``bench --NAME``'s record of its engines written to OUT/NAME.json, its summary
+    printed; an engine that failed (its ``error``) or the ``failed`` found by the caller
+    said on stderr, a line each: exit 1."""
     out.mkdir(parents=True, exist_ok=True)
-    (out / "fatigue.json").write_text(json.dumps(record, indent=2) + "\n")
-    for line in summary_lines(record):
+    (out / f"{name}.json").write_text(json.dumps(record, indent=2) + "\n")
+    for line in lines:
         print(line)
-    print(f"wrote {out}/fatigue.json")
-    failed = [f"{k}: {e['error']}" for k, e in record["engines"].items() if "error" in e]
-    failed += [f"{k}: the damage along s differs from one local worker's"
-               for k, e in record["engines"].items() if e.get("identical") is False]
+    print(f"wrote {out}/{name}.json")
+    failed = [f"{k}: {e['error']}" for k, e in record["engines"].items()
+              if "error" in e] + failed
     for f in failed:
-        print(f"error: bench --fatigue: {f}", file=sys.stderr)
+        print(f"error: bench --{name}: {f}", file=sys.stderr)
     return 1 if failed else 0
 
 
