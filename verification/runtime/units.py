@@ -23,7 +23,6 @@ import contextlib
 import hashlib
 import heapq
 import json
-import math
 import os
 import shutil
 import statistics
@@ -70,7 +69,7 @@ def estimate_line(todo: int, workers: int, case_s: float, source: str,
     units start in order as the workers free up."""
     w = max(1, min(workers, todo))
     seconds = [case_s * x for x in weights] if weights else [case_s] * todo
-    total = math.ceil(todo / w) * case_s if not weights else makespan(seconds, w)
+    total = makespan(seconds, w)
     return (f"estimate: about {duration_text(total)} for {todo} {noun}(s) on {w} "
             f"worker(s) ({case_s:.1f} s {each}, {source})")
 
