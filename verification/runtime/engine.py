@@ -180,11 +180,18 @@ class Engine:
     #: like-for-like baseline: the workers' start and their one BLAS thread each)
     pool: bool = False
 
+    @property
+    def in_process(self) -> bool:
+        """The units run in this process, one after another."""
+        return not self.scheduler and self.jobs == 1 and not self.pool
+
     def describe(self) -> str:
         if self.scheduler:
             return f"Dask cluster at {self.scheduler} ({self.workers()} worker(s))"
+        if self.in_process:
+            return "this process"
         if self.jobs == 1:
-            return "1 local worker process" if self.pool else "this process"
+            return "1 local worker process"
         return f"{self.jobs} local worker processes"
 
     def workers(self) -> int:
@@ -248,7 +255,7 @@ class Engine:
         ``names``: the units' keys on a Dask cluster (its dashboard shows them)."""
         if self.scheduler:
             yield from self._dask(fn, args, names)
-        elif self.jobs == 1 and not self.pool:
+        elif self.in_process:
             for i, a in enumerate(args):
                 try:
                     if progress is not None:

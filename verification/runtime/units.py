@@ -97,7 +97,7 @@ def run_units(engine, fn, specs: list, keep, *, progress=None, names=None,
     total = len(specs) + resumed if total is None else total
     names = names or [f"{noun}-{i}" for i in range(len(specs))]
     workers = engine.workers()
-    here = engine.scheduler is None and engine.jobs == 1 and not engine.pool
+    here = engine.in_process
     plural = f"{noun}s"
     track = UnitTracker(list(weights) if weights else [1.0] * len(specs), workers,
                         what=plural, known=False)
