@@ -23,8 +23,9 @@ import sys
 try:                             # Ctrl-C while the program loads: one line, 130
     from verification.runtime.interrupts import (arm_swallowed_interrupts,
                                                  caused_by_interrupt, count_interrupts,
-                                                 exit_quietly_on_interrupt, interrupts_seen,
-                                                 keep_swallowed_interrupts, reraise_interrupt)
+                                                 end_interrupted, exit_quietly_on_interrupt,
+                                                 interrupts_seen, keep_swallowed_interrupts,
+                                                 reraise_interrupt)
     count_interrupts()           # from here on, no Ctrl-C is lost (see main)
 except KeyboardInterrupt:        # (a module of the standard library's imports only)
     print("error: interrupted", file=sys.stderr)
@@ -45,7 +46,7 @@ except BaseException as exc:     # noqa: BLE001 - a Ctrl-C, also one that Python
     if not caused_by_interrupt(exc):
         raise
     print("error: interrupted", file=sys.stderr)
-    raise SystemExit(130) from None
+    end_interrupted()            # its threads and atexit callbacks run, no finalisation
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -82,13 +83,16 @@ def main(argv: list[str] | None = None) -> int:
         if argv is None:                 # a second Ctrl-C now: 130 at once, no traceback
             exit_quietly_on_interrupt(True)
         err(str(exc) or "interrupted")
-        return 130
-    if code != 130 and interrupts_seen() > seen:
-        err(f"interrupted: the Ctrl-C was caught by a library on its way, and the command ran "
-            f"on to its end (exit {code} without the Ctrl-C)")
         code = 130
-    if argv is None:
-        exit_quietly_on_interrupt(code == 130)
+    else:
+        if code != 130 and interrupts_seen() > seen:
+            err(f"interrupted: the Ctrl-C was caught by a library on its way, and the command "
+                f"ran on to its end (exit {code} without the Ctrl-C)")
+            code = 130
+        if argv is None:
+            exit_quietly_on_interrupt(code == 130)
+    if argv is None and code == 130:     # the program, interrupted: its threads and atexit
+        end_interrupted()                # callbacks run, the interpreter's teardown skipped
     return code
 
 
