@@ -5,8 +5,12 @@ static equilibrium and solves the generalised eigenproblem
 
     K x = omega^2 M x
 
-for the lowest modes of each family, the model of :mod:`riser.results.modes` (the one the
-BVP's and the VFIFE's modal analyses share):
+for the lowest modes, the model of :mod:`riser.results.modes` (the one the BVP's and the
+VFIFE's modal analyses share): about a planar static state the two families of
+:data:`~riser.results.modes.PLANES`, each solved on its own; about a 3D static state
+(``Scene.statics_planar`` False: a current across the line's plane or turning with depth,
+a hang-off out of the anchor's plane) one family, :data:`~riser.results.modes.COUPLED`,
+of twice as many modes from one eigenproblem on all the free unknowns (below).
 
 - **K**, the tangent of the residual, :meth:`ancf.model.Model.residual` at the static
   state: the Hessian of the extensible elastica's strain energy (the tension's geometric
@@ -39,16 +43,33 @@ the in-plane angle only, so its out-of-plane stiffness, the Hessian k / |r'|^2 o
 k/2 psi^2 (psi = r'_z / |r'| the tangent's tilt out of the plane), is added here at the
 joint's slope z unknown.
 
+About a 3D static state the same K and M are taken, term by term, of the 3D model about
+the 3D state the statics solved (its d = 3 unknowns as they are): the elastica's Hessian
+(its axial part with the slope's own length |r'|, the bending part with the 3D
+curvature), the Winkler springs where the line lies in the seabed (vertical, nothing
+laterally), the weight and the static drag of the current (its component across the plane
+too) dead loads without stiffness, the added mass across the 3D tangent. The in-plane and
+out-of-plane unknowns then couple (``info['coupling']`` > 0), so they are not split: one
+generalised eigenproblem on all the free unknowns gives the ``2 count`` lowest modes,
+numbered 1..2 count by frequency, each with its ``out_of_plane_share``
+(:func:`riser.results.modes.out_of_plane_share`, the fraction of its squared displacement
+along z) in ``info['out_of_plane_share']``. The ends of a 3D scene are pinned (joints and
+a tensioner need a planar scene, riser/model/end_checks.py); the joint's out-of-plane
+stiffness above is the Hessian about a planar state only, so a joint about a 3D state is
+refused. ``solve_modes(..., coupled=True)`` solves a planar state the same way (one
+family: its frequencies are the two families' merged, the check of
+tests/test_ancf_modes_3d.py).
+
 Ends: the prescribed unknowns (``model.ends.fixed``, in the clamped nodes' rotated slope
 basis: K and M are rotated there, :func:`ancf.ends.rotate`) are removed; the free anchor
 fixes none. Eigenpairs by ``scipy.sparse.linalg.eigsh`` in shift-invert mode about 0 on
 the sparse matrices (a reproducible ARPACK start), dense ``scipy.linalg.eigh`` for a small
 family.
 
-Mode shapes: the displacement of the line's points, the positions of the eigenvector
-interpolated by the elements' own cubic Hermite functions at the nodes and at most
-:data:`ancf.output.OUTPUT_SPACING` apart (the static profile's samples), (k, 3) x, y, z,
-``normalise_shape``d; ``s`` the unstretched arc length.
+Mode shapes (both paths): the displacement of the line's points, the positions of the
+eigenvector interpolated by the elements' own cubic Hermite functions at the nodes and at
+most :data:`ancf.output.OUTPUT_SPACING` apart (the static profile's samples), (k, 3) x, y,
+z, ``normalise_shape``d; ``s`` the unstretched arc length.
 """
 
 from __future__ import annotations
@@ -65,7 +86,8 @@ import scipy.sparse.linalg as sla
 from riser.callbacks import with_fraction
 from riser.errors import UnsupportedSceneError
 from riser.model.scene import Scene
-from riser.results.modes import PLANES, ModalResult, Mode, normalise_shape
+from riser.results.modes import (COUPLED, PLANES, ModalResult, Mode, normalise_shape,
+                                 out_of_plane_share)
 from riser.results.result import SolveResult, Status
 
 from . import banded
@@ -89,28 +111,33 @@ FAMILY_COMPONENTS = {"in_plane": (0, 1, 3, 4), "out_of_plane": (2, 5)}
 
 
 def solve_modes(scene: Scene, count: int = 10, *, static: SolveResult | None = None,
-                progress=None) -> ModalResult:
+                progress=None, coupled: bool | None = None) -> ModalResult:
     """The ``count`` lowest in-plane and out-of-plane modes of the ANCF model of the
-    fixed-ends ``scene`` about its static state.
+    fixed-ends ``scene`` about its static state, or about a 3D static state the ``2 count``
+    lowest coupled modes (module docstring).
 
     static : a converged :func:`ancf.solve` result of ``scene`` (its ``solver_state`` the
         static (Model, q)); solved here when None, without the scene's [dynamics].
-    A scene the ANCF does not take (:func:`ancf.solver.require_ancf`), flowing contents
-    or a static state out of plane give a ``refused`` result; a static solve that fails
-    gives its status and no modes; a negative eigenvalue (an unstable static state) gives
-    ``not_converged`` with the modes found. Never raises on a failure (a bad ``count`` or
-    ``static`` is ValueError; a scene with bad input, SceneError, as the solve)."""
+    coupled : None (default): two families about a planar static state
+        (``scene.statics_planar``), one coupled family about a 3D one; True: one coupled
+        family whatever the state (a planar one too); False: the two families only (a 3D
+        static state is refused).
+    A scene the ANCF does not take (:func:`ancf.solver.require_ancf`) or flowing contents
+    give a ``refused`` result; a static solve that fails gives its status and no modes; a
+    negative eigenvalue (an unstable static state) gives ``not_converged`` with the modes
+    found. Never raises on a failure (a bad ``count`` or ``static`` is ValueError; a scene
+    with bad input, SceneError, as the solve)."""
     if count < 1:
         raise ValueError(f"count must be >= 1, got {count}")
     if static is not None and static.method != "ancf":
         raise ValueError(f"static must be an ancf result, got a {static.method} one")
     try:
-        return _solve_modes(scene, count, static, progress)
+        return _solve_modes(scene, count, static, progress, coupled)
     except UnsupportedSceneError as exc:
         return ModalResult("ancf", scene.name, Status.REFUSED, str(exc))
 
 
-def _solve_modes(scene: Scene, count: int, static, progress) -> ModalResult:
+def _solve_modes(scene: Scene, count: int, static, progress, coupled) -> ModalResult:
     """:func:`solve_modes`, raising UnsupportedSceneError for what it refuses."""
     if scene.internal_flow is not None and scene.internal_flow.speed != 0.0:
         raise UnsupportedSceneError(
@@ -119,11 +146,15 @@ def _solve_modes(scene: Scene, count: int, static, progress) -> ModalResult:
             "the line with its contents at rest")
     still = scene.replace(dynamics=None) if scene.dynamics is not None else scene
     require_ancf(still)
-    if not still.statics_planar:
+    three_d = not still.statics_planar
+    if coupled is None:
+        coupled = three_d
+    if three_d and not coupled:
         key, why = still.out_of_plane(statics=True)
         raise UnsupportedSceneError(
-            f"{scene.source}: {key}: {why}; modes are analysed about a planar static state "
-            "only (out of plane the in-plane and out-of-plane modes couple)")
+            f"{scene.source}: {key}: {why}; modes in two families (coupled=False) are "
+            "analysed about a planar static state only (out of plane the in-plane and "
+            "out-of-plane modes couple)")
     report = with_fraction(progress)
     if static is None:
         if report is not None:
@@ -140,7 +171,7 @@ def _solve_modes(scene: Scene, count: int, static, progress) -> ModalResult:
     if report is not None:
         report("ancf modes: tangent stiffness, mass and eigenvalues", fraction=0.5)
     t0 = time.perf_counter()
-    q3 = planar_state(model, q, scene.name)
+    q3 = state_3d(model, q) if coupled else planar_state(model, q, scene.name)
     lin = linearise(model, q3)
     if lin.asymmetry > MAX_ASYMMETRY:
         return ModalResult("ancf", scene.name, Status.NOT_CONVERGED,
@@ -150,9 +181,11 @@ def _solve_modes(scene: Scene, count: int, static, progress) -> ModalResult:
                            info={"static_wall_time_s": static_s, "asymmetry": lin.asymmetry})
     samples = sample_points(model.mesh)
     modes, negative = [], 0
-    for plane in PLANES:
+    families = ((COUPLED, lin.free, 2 * count),) if coupled else \
+        tuple((plane, lin.family(plane), count) for plane in PLANES)
+    for plane, idx, wanted in families:
         try:
-            lam, vec = family_eigen(lin, plane, count)
+            lam, vec = eigenpairs(lin, idx, wanted)
         except (RuntimeError, ValueError, sla.ArpackError) as exc:
             return ModalResult("ancf", scene.name, Status.NOT_CONVERGED,
                                f"{plane} eigenvalues failed: {exc}",
@@ -175,9 +208,17 @@ def _solve_modes(scene: Scene, count: int, static, progress) -> ModalResult:
             "drag_as_dead_load": bool(model.use_drag
                                       or getattr(model, "use_point_drag", False)),
             "force_residual": static.info.get("force_residual")}
-    n_in = sum(m.plane == PLANES[0] for m in modes)
-    msg = (f"{n_in} in-plane and {len(modes) - n_in} out-of-plane modes about the static "
-           f"state ({mesh.ne} elements of {info['element_length']:.3g} m)")
+    where = f"({mesh.ne} elements of {info['element_length']:.3g} m)"
+    if coupled:
+        info["out_of_plane_share"] = [out_of_plane_share(m) for m in modes]
+        info["static_lateral_extent_m"] = lateral_extent(lin)
+        state = "the 3D static state" if three_d else \
+            "the planar static state, solved as one family"
+        msg = f"{len(modes)} coupled modes about {state} {where}"
+    else:
+        n_in = sum(m.plane == PLANES[0] for m in modes)
+        msg = (f"{n_in} in-plane and {len(modes) - n_in} out-of-plane modes about the "
+               f"static state {where}")
     if negative:
         return ModalResult("ancf", scene.name, Status.NOT_CONVERGED,
                            msg + f"; {negative} negative eigenvalue(s): the static state is "
@@ -235,6 +276,21 @@ def planar_state(model: Model, q: np.ndarray, name: str) -> np.ndarray:
     return out.ravel()
 
 
+def state_3d(model: Model, q: np.ndarray) -> np.ndarray:
+    """The static state ``q`` of ``model`` as 3D unknowns (n * 6,) for the coupled
+    analysis: a 3D state as it is (no check, no rounding of z), a planar one (d = 2)
+    embedded at the anchor's z."""
+    if model.d == 3:
+        return np.array(q, float)
+    return planar_state(model, q, model.scene.name)
+
+
+def lateral_extent(lin: "Linearised") -> float:
+    """The largest |z - z_anchor| [m] of the nodes of the state ``lin`` is taken about."""
+    z0 = float(lin.model.scene.ends.anchor_point[2])
+    return float(np.max(np.abs(lin.q.reshape(-1, 6)[:, 2] - z0)))
+
+
 def mass_matrix(model: Model, q: np.ndarray) -> np.ndarray:
     """The band mass matrix of ``model`` at ``q``: the consistent line mass with the added
     mass across the axis (:func:`ancf.mass.mass_pass`, coefficient 1, no inertial force)
@@ -263,9 +319,15 @@ def linearise(static_model: Model, q3: np.ndarray) -> Linearised:
     model.use_drag = False                 # the static drag is a dead load: no stiffness
     kl, N = model.kl, model.N
     _, K, _ = model.residual(q3)
-    # the joints' out-of-plane stiffness (isotropic joint): k / |r'|^2 at the slope's z
+    # the joints' out-of-plane stiffness (isotropic joint): k / |r'|^2 at the slope's z,
+    # the Hessian of k/2 psi^2 about a planar state (r'_z = 0) only
     for node, k, _ in model.ends.springs:
         i = model.ends.dof(node, 3)
+        if abs(q3[i + 2]) > PLANAR_TOL * math.hypot(q3[i], q3[i + 1]):
+            raise UnsupportedSceneError(
+                f"{scene.name}: modes: the flex joint at node {node} leans out of the plane "
+                f"(slope z {q3[i + 2]:.3g}); its stiffness is modelled about a planar "
+                "state only")
         a2 = float(q3[i] ** 2 + q3[i + 1] ** 2 + q3[i + 2] ** 2)
         K[2 * kl, i + 2] += k / a2
     M = mass_matrix(model, q3)
@@ -302,9 +364,17 @@ def arpack_start(size: int) -> dict:
 
 
 def family_eigen(lin: Linearised, plane: str, count: int):
-    """The ``count`` lowest eigenpairs of one family: (omega^2 (k,), vectors (N, k) on all
-    unknowns in the global basis, zero on the prescribed ones), by increasing frequency."""
-    idx = lin.family(plane)
+    """The ``count`` lowest eigenpairs of one family of a planar state (:func:`eigenpairs`
+    on its free unknowns)."""
+    return eigenpairs(lin, lin.family(plane), count)
+
+
+def eigenpairs(lin: Linearised, idx: np.ndarray, count: int):
+    """The ``count`` lowest eigenpairs of K x = omega^2 M x restricted to the free unknowns
+    ``idx`` (a planar family's, or all of them: the coupled family): (omega^2 (k,)
+    [rad2/s2], vectors (N, k) on all unknowns in the global basis, zero on the prescribed
+    ones), by increasing frequency. Dense ``eigh`` for a small problem, else ARPACK in
+    shift-invert mode about 0 from :func:`arpack_start`."""
     K = lin.K[idx][:, idx].tocsc()
     M = lin.M[idx][:, idx].tocsc()
     k = min(count, len(idx) - 1)

@@ -194,8 +194,11 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
     # solve_bvp's measure: the largest rms collocation residual, relative to 1 + |f|
     info["collocation_residual"] = float(np.max(sol.rms_residuals))
     try:
-        profile, checks = (build_rod_profile if rod else build_profile)(prob, sol,
-                                                                         scene.water_depth)
+        state = None
+        if rod:
+            profile, checks, state = build_rod_profile(prob, sol, scene.water_depth)
+        else:
+            profile, checks = build_profile(prob, sol, scene.water_depth)
         if not rod and isinstance(scene.ends, FixedEnds):
             profile = profile.replace(z=np.full_like(profile.s, scene.ends.anchor_point[2]))
         if scene.internal_flow is not None:
@@ -220,7 +223,10 @@ def solve(scene: Scene, *, tolerance: float | None = None, max_nodes: int | None
         message += "; " + note
         warnings.extend(warn)
     warnings.extend(validity.profile_warnings(scene, profile, lengths))
-    return result(Status.CONVERGED, message, profile)
+    out = result(Status.CONVERGED, message, profile)
+    if state is not None:                # the rod's states, for a linearisation about them
+        out = out.replace(solver_state=state)
+    return out
 
 
 def xy_ends(scene: Scene) -> Scene:

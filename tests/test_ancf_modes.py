@@ -256,9 +256,10 @@ def test_the_modes_are_reproducible_and_take_a_static_result():
 
 
 def test_what_the_modes_refuse():
-    # a static state out of plane (a current across the plane), flowing contents, and a
-    # scene the ANCF refuses (a Wang form: the command converts it first)
-    out = am.solve_modes(resolve("scr-steel-current-90"), 3)
+    # a static state out of plane where the two planar families are asked for (coupled=
+    # False; by default it is the coupled family, tests/test_ancf_modes_3d.py), flowing
+    # contents, and a scene the ANCF refuses (a Wang form: the command converts it first)
+    out = am.solve_modes(resolve("scr-steel-current-90"), 3, coupled=False)
     assert out.status is Status.REFUSED and "planar" in out.message, out.message
     out = am.solve_modes(resolve("liu2021-scr"), 3)          # 2.5 m/s
     assert out.status is Status.REFUSED and "internal_flow.speed" in out.message

@@ -204,7 +204,8 @@ def test_refusals():
                    "bending_stiffness": 1.0},
         environment={"current": {"heights": [0.0, 10.0], "speeds": [1.0, 1.0],
                                  "heading_deg": 90.0}}))
-    res = solve_modes(cur)
-    assert res.status.value == "refused" and "not planar" in res.message
+    # a 3D static state is analysed: the coupled family (tests/test_bvp_modes_3d.py)
+    res = solve_modes(cur, 2)
+    assert res.converged and {m.plane for m in res.modes} == {"coupled"}, res.message
     with pytest.raises(ValueError):
         solve_modes(sc, 0)

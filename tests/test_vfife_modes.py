@@ -204,7 +204,11 @@ def test_refuses_wang_form_and_out_of_plane_state():
     res = solve_modes(resolve("wang2014-baseline"))
     assert res.status.value == "refused" and "fixed ends" in res.message and not res.modes
     sc = catenary(1e-3, current={"heights": [0.0], "speeds": [0.5], "heading_deg": 90.0})
-    res = solve_modes(sc, 2)
+    # a 3D static state: the coupled family (tests/test_vfife_modes_3d.py), or refused when
+    # the two planar families are asked for
+    res = solve_modes(sc, 2, coupled=False)
     assert res.status.value == "refused" and "not planar" in res.message
+    res = solve_modes(sc, 2)
+    assert res.converged and {m.plane for m in res.modes} == {"coupled"}, res.message
     with pytest.raises(ValueError, match="count"):
         solve_modes(catenary(1e-3), 0)

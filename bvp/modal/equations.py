@@ -169,11 +169,12 @@ FAMILIES = {
 }
 
 
-def require_linearisable(scene: Scene, who: str) -> None:
+def require_linearisable(scene: Scene, who: str, three_d: bool = False) -> None:
     """Refuse, before solving, a scene whose static state cannot be linearised here:
-    ends that are not fixed, an out-of-plane current (a 3D static state), a rigid seabed
-    (no linear stiffness). ``who`` names the analysis in the message ('bvp modes', 'the
-    frequency domain')."""
+    ends that are not fixed, an out-of-plane current (a 3D static state; unless
+    ``three_d``: the analysis linearises the 3D rod, bvp/modal/rod_family.py), a rigid
+    seabed (no linear stiffness). ``who`` names the analysis in the message ('bvp modes',
+    'the frequency domain')."""
     src = scene.source
     if not isinstance(scene.ends, FixedEnds):
         raise UnsupportedSceneError(
@@ -181,7 +182,7 @@ def require_linearisable(scene: Scene, who: str) -> None:
             f"'{scene.ends.kind}' form (convert it with "
             "verification.pipeline.vfife_equivalent)")
     why = scene.out_of_plane(statics=True)
-    if why is not None:
+    if why is not None and not three_d:
         raise UnsupportedSceneError(
             f"{src}: {why[0]}: {why[1]}: the static state is not planar, {who} "
             "linearise(s) about a planar one (a 3D static state has no modal analysis "
@@ -280,7 +281,11 @@ def state_scales(pieces: list[Piece], fam: Family, count: int) -> np.ndarray:
     Tref = max(Tmax, EI / ell ** 2)
     if fam.plane == "in_plane":
         return np.array([1.0, 1.0, 1.0 / ell, EI / ell ** 2, Tref / ell, Tref / ell])
-    return np.array([1.0, 1.0 / ell, EI / ell ** 2, Tref / ell])
+    if fam.plane == "out_of_plane":
+        return np.array([1.0, 1.0 / ell, EI / ell ** 2, Tref / ell])
+    # the coupled family (bvp/modal/rod_family.py): the in-plane six, then z, phi, M2, F2
+    return np.array([1.0, 1.0, 1.0 / ell, EI / ell ** 2, Tref / ell, Tref / ell,
+                     1.0, 1.0 / ell, EI / ell ** 2, Tref / ell])
 
 
 #: seed of ARPACK's start vector: scipy otherwise starts from a random vector (a fresh

@@ -90,21 +90,25 @@ frequency_hz, nodes, collocation_residual, mac_with_guess), with
 
 from __future__ import annotations
 
+import dataclasses
 import time
 
 import numpy as np
 
 from riser.callbacks import with_fraction
 from riser.errors import UnsupportedSceneError
-from riser.results.modes import PLANES, ModalResult, Mode, mac, normalise_shape, shape_at
+from riser.results.modes import (COUPLED, PLANES, ModalResult, Mode, mac, normalise_shape,
+                                 out_of_plane_share, shape_at)
 from riser.results.result import SolveResult, Status
 from riser.model.scene import Scene
 
 from ..collocation import solve_bvp
 from ..mesh import clustered_mesh
+from ..rod.output import RodState
 from .ends import modal_ends
 from .equations import (FAMILIES, Family, Piece, box_modes, build_pieces,
                               require_linearisable)
+from .rod_family import ROD_FAMILY, rod_ends, rod_pieces, to_scene_axes
 
 #: a refined mode must keep MAC >= this with its box-scheme guess ...
 MIN_MAC_WITH_GUESS = 0.9
@@ -152,15 +156,25 @@ def solve_modes(scene: Scene, count: int = 10, *, static: SolveResult | None = N
     if not static.converged:
         return result(static.status, f"the static solution did not converge: "
                       f"{static.message}")
-    pieces = build_pieces(scene, static.profile, dead_drag=True)
+    state = static.solver_state
+    if scene.out_of_plane(statics=True) is not None and not isinstance(state, RodState):
+        raise ValueError("static must be the bvp's 3D rod result of the scene")
+    if isinstance(state, RodState):      # the 3D rod's state (a 3D scene's): coupled
+        pieces = rod_pieces(scene, static.profile, state)
+        families = [(ROD_FAMILY, rod_ends(scene), 2 * count)]
+        info["static_state"] = "3d"
+    else:
+        pieces = build_pieces(scene, static.profile, dead_drag=True)
+        top = pieces[-1].static(np.array([pieces[-1].s1]))
+        top_static = {k: float(top[k][0]) for k in ("theta", "T", "F")}
+        families = [(FAMILIES[plane], modal_ends(scene, plane, top_static), count)
+                    for plane in PLANES]
+        info["static_state"] = "planar"
     info["pieces"] = [(round(p.s0, 6), round(p.s1, 6), bool(p.contact)) for p in pieces]
-    top = pieces[-1].static(np.array([pieces[-1].s1]))
-    top_static = {k: float(top[k][0]) for k in ("theta", "T", "F")}
     modes, failures, checks = [], [], []
     done, total = 0, 2 * count
-    for plane in PLANES:
-        fam = FAMILIES[plane]
-        ends = modal_ends(scene, plane, top_static)
+    for fam, ends, count in families:
+        plane = fam.plane
         lam, grid, states = box_modes(pieces, fam, ends, count, grid_intervals)
         if lam.size and lam[0] <= 0.0:
             return result(Status.NOT_CONVERGED, f"{plane}: the static state is not stable "
@@ -186,19 +200,27 @@ def solve_modes(scene: Scene, count: int = 10, *, static: SolveResult | None = N
         if len(found) == count and len(failures) == failed:
             found = [Mode(plane, j + 1, m.frequency_hz, m.s, m.shape)
                      for j, m in enumerate(found)]
+        if plane == COUPLED:             # back to the scene's axes, and each mode's share
+            found = [dataclasses.replace(m, shape=normalise_shape(to_scene_axes(m.shape,
+                                                                                state)))
+                     for m in found]
+            info["out_of_plane_share"] = [out_of_plane_share(m) for m in found]
         modes.extend(found)
     info["modes"] = checks
     info["max_collocation_residual"] = max(c["collocation_residual"] for c in checks)
     info["min_mac_with_guess"] = min(c["mac_with_guess"] for c in checks)
     if failures:
         return result(Status.NOT_CONVERGED, "; ".join(failures), modes)
-    return result(Status.CONVERGED, f"converged: {count} in-plane and {count} out-of-plane "
-                  f"modes (solve_bvp refinement of box-scheme guesses)", modes)
+    what = (f"{len(modes)} coupled modes about the 3D static state"
+            if info["static_state"] == "3d" else
+            f"{count} in-plane and {count} out-of-plane modes")
+    return result(Status.CONVERGED, f"converged: {what} (solve_bvp refinement of box-scheme "
+                  "guesses)", modes)
 
 
 def _require_modal(scene: Scene) -> None:
     """Refuse what the linearisation does not represent (before solving)."""
-    require_linearisable(scene, "bvp modes")
+    require_linearisable(scene, "bvp modes", three_d=True)
     if scene.attachments:
         raise UnsupportedSceneError(
             f"{scene.source}: attachments: the bvp modes have no point masses (the VFIFE's "

@@ -16,6 +16,7 @@ the vertical when the tangent points back along the plane).
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import brentq
@@ -53,14 +54,32 @@ def _frame(th, ph):
     return RodModel.frame(np.asarray(th, float), np.asarray(ph, float))
 
 
-def build_rod_profile(prob, sol, water_depth: float | None) -> tuple[Profile, dict]:
+@dataclass(frozen=True)
+class RodState:
+    """The rod's converged static state at the profile's stations, in its plane's frame
+    (x along the plane from the anchor's x, y up, z across it): the linearisations about
+    a 3D state read it (bvp/modal/rod_family.py), as ``SolveResult.solver_state``.
+
+    ``columns``: ``s`` [m], ``x``, ``y``, ``z`` [m], ``th``, ``ph`` [rad], ``M1``, ``M2``
+    [N m], ``F1``, ``F2``, ``T`` [N] (bvp/rod/equations.py's states), ``EI`` [N m2],
+    ``seg`` (the segment's index) and ``qx``, ``qy``, ``qz`` [N/m]: the static load of the
+    current's drag (and a dead load's) per unstretched length, as the equations apply it at
+    the static state (the weight and the seabed excluded). ``plane`` maps vectors back to
+    the scene's axes."""
+
+    columns: dict
+    plane: LinePlane
+
+
+def build_rod_profile(prob, sol, water_depth: float | None
+                      ) -> tuple[Profile, dict, RodState]:
     """The profile of the rod's solution in the scene's axes, at the stations of
-    bvp.beam.output.build_profile (the extrema of |m| among them), and the checks for the
-    result's info."""
+    bvp.beam.output.build_profile (the extrema of |m| among them), the checks for the
+    result's info, and the :class:`RodState` at those stations."""
     model = prob.model
     p = sol.p if sol.p is not None else np.zeros(0)
     parts = pieces(model, p)
-    cols = {k: [] for k in _COLUMNS + ("EI",)}
+    cols = {k: [] for k in _COLUMNS + ("EI", "seg")}
     strain = 0.0
     grounded = prob.first_total - parts[0]["s1"] if prob.form == "fixed_seabed" else 0.0
     for pc, s, Y in stations(prob, sol, parts, grounded, _with_moment_peaks):
@@ -70,6 +89,7 @@ def build_rod_profile(prob, sol, water_depth: float | None) -> tuple[Profile, di
                        ("M1", IM), ("M2", IM2), ("F1", IF), ("F2", IF2), ("T", IT)):
             cols[key].append(Y[j])
         cols["EI"].append(np.full(s.size, model.EI[k]))
+        cols["seg"].append(np.full(s.size, k))
         strain = max(strain, float(np.max(np.abs(Y[IT]))) * float(model.inv_EA[k]))
     c = {k: np.concatenate(v) for k, v in cols.items()}
     checks: dict = {"max_strain": strain}
@@ -93,7 +113,28 @@ def build_rod_profile(prob, sol, water_depth: float | None) -> tuple[Profile, di
     checks["equilibrium_residual"] = equilibrium_residual(model, parts, grounded, c, t, n1, n2)
     checks["max_tilt_deg"] = float(np.degrees(np.max(np.abs(c["ph"]))))
     height_checks(prob, c, tdp_s, water_depth, checks)
-    return prof, checks
+    q = static_drag(model, c, t, n1, n2)
+    state = RodState({**c, "qx": q[0], "qy": q[1], "qz": q[2]}, prob.plane)
+    return prof, checks, state
+
+
+def static_drag(model: RodModel, c: dict, t, n1, n2) -> np.ndarray:
+    """(3, n) [N/m]: the current's drag (tangential c_t |U.t| U.t t, normal c_n |U_n| U_n)
+    and a dead load at the stations ``c`` (with ``seg``), in the plane's frame: the
+    equations' load less the weight and the seabed."""
+    out = np.zeros((3, c["s"].size))
+    if model.dead_load is not None:
+        out += model._dead()
+    if model.has_drag:
+        k = c["seg"].astype(int)
+        ux, uz, _, _ = model.current(c["y"])
+        U = np.stack([ux, np.zeros_like(ux), uz])
+        Ut = np.sum(U * t, axis=0)
+        U1, U2 = np.sum(U * n1, axis=0), np.sum(U * n2, axis=0)
+        r = np.hypot(U1, U2)
+        out += (np.asarray(model.c_t)[k] * np.abs(Ut) * Ut * t
+                + np.asarray(model.c_n)[k] * r * (U1 * n1 + U2 * n2))
+    return out
 
 
 def _with_grounded_part(prob, model: RodModel, c: dict, grounded: float) -> dict:
@@ -109,7 +150,7 @@ def _with_grounded_part(prob, model: RodModel, c: dict, grounded: float) -> dict
     z = np.zeros_like(sg)
     pre = {"s": sg, "x": prob.anchor_xy[0] + r * d[0], "y": z, "z": r * d[2], "th": z,
            "ph": np.full_like(sg, ph0), "M1": z, "M2": z, "F1": z, "F2": z, "T": T,
-           "EI": np.full_like(sg, model.EI[0])}
+           "EI": np.full_like(sg, model.EI[0]), "seg": np.zeros_like(sg)}
     return {k: np.concatenate([pre[k], c[k]]) for k in c}
 
 

@@ -6,9 +6,12 @@ added mass ``C_a rho pi D^2/4`` normal to the axis only), the same tension, bend
 stiffness and seabed contact (the elastic seabed linearised: a vertical spring of the
 scene's stiffness [N/m2] under the grounded part, nothing laterally; the static drag of a
 current held as a dead load (its static value, fixed in direction); no drag damping or
-friction). Only planar static states are analysed: the in-plane
-(x, y) and out-of-plane (z) motions then decouple and each family is numbered from its
-lowest frequency.
+friction). About a planar static state the in-plane (x, y) and out-of-plane (z) motions
+decouple and each family is numbered from its lowest frequency (:data:`PLANES`). About a
+3D static state (a current across the line's plane or turning with depth, a hang-off out
+of the anchor's plane) they couple: the modes form one family, :data:`COUPLED`, numbered
+from the lowest frequency, twice as many as a family's ``count`` (a method asked for
+``count`` modes a family returns ``2 count`` coupled ones).
 
 Conventions: SI units; x horizontal towards the hang-off, y up from the seabed, z out of
 plane; ``s`` [m] the unstretched arc length from the bottom end. A mode shape is the
@@ -28,12 +31,24 @@ from .result import Status
 
 #: the two families of a planar static state (``Mode.plane``; ``modes.csv`` ``plane``)
 PLANES = ("in_plane", "out_of_plane")
+#: the one family of a 3D static state (``Mode.plane``; ``modes.csv`` ``plane``)
+COUPLED = "coupled"
+
+
+def out_of_plane_share(mode: "Mode") -> float:
+    """The fraction of a mode's squared displacement that is along z, integrated along
+    the line (trapezoidal in s, so that a method's mesh does not weigh it): 0 for an
+    in-plane mode, 1 for an out-of-plane one. z is the scene's axis (out of the x-y
+    plane; for ends out of that plane a share of the in-plane motion counts too)."""
+    shape = np.asarray(mode.shape, float)
+    total = float(np.trapezoid(np.sum(shape ** 2, axis=1), mode.s))
+    return float(np.trapezoid(shape[:, 2] ** 2, mode.s) / total) if total > 0.0 else 0.0
 
 
 @dataclass(frozen=True)
 class Mode:
-    """One natural mode: ``plane`` (one of :data:`PLANES`), ``number`` (1-based within
-    its plane, by frequency), ``frequency_hz`` [Hz], ``s`` (k,) [m] and ``shape`` (k, 3)
+    """One natural mode: ``plane`` (one of :data:`PLANES`, or :data:`COUPLED`), ``number``
+    (1-based within its plane, by frequency), ``frequency_hz`` [Hz], ``s`` (k,) [m] and ``shape`` (k, 3)
     [-] (see the module docstring)."""
 
     plane: str

@@ -39,7 +39,7 @@ import numpy as np
 
 from riser.callbacks import with_fraction
 from riser.errors import UnsupportedSceneError
-from riser.results.modes import PLANES, ModalResult, mac, shape_at
+from riser.results.modes import COUPLED, PLANES, ModalResult, mac, shape_at
 from riser.results.result import Status
 from verification.methods import method
 from verification.pipeline import vfife_equivalent
@@ -66,7 +66,11 @@ COLUMN_SUFFIXES = ("frequency_hz", "rel_diff", "mac")
 COLUMNS = ("ancf",)
 #: the methods' names in the report and on the console
 LABELS = {"bvp": "BVP", "vfife": "VFIFE", "ancf": "ANCF"}
-PLANE_TITLES = {"in_plane": "in-plane (x, y)", "out_of_plane": "out-of-plane (z)"}
+PLANE_TITLES = {"in_plane": "in-plane (x, y)", "out_of_plane": "out-of-plane (z)",
+                COUPLED: "coupled (x, y, z) about the 3D static state"}
+#: the families a run can hold: the two planes of a planar static state, or the one
+#: coupled family of a 3D one (riser/results/modes.py)
+FAMILIES = (*PLANES, COUPLED)
 
 
 @dataclass
@@ -123,7 +127,7 @@ def pair_rows(bvp_res: ModalResult, vf_res: ModalResult, name: str = "vfife") ->
     """Agreement rows of the modes both results hold, by plane and number; ``vf_res`` is
     the result of the method ``name`` (its value's key in the rows)."""
     rows = []
-    for plane in PLANES:
+    for plane in FAMILIES:
         vf_modes = {m.number: m for m in vf_res.family(plane)}
         for b in bvp_res.family(plane):
             v = vf_modes.get(b.number)
@@ -196,7 +200,7 @@ def keyed_rows(run: ModesRun) -> list[tuple[str, int, Row | None, dict]]:
     keys = [(r["plane"], r["mode"]) for r in run.rows]
     for rows in run.columns.values():
         keys += [(r["plane"], r["mode"]) for r in rows if (r["plane"], r["mode"]) not in keys]
-    keys.sort(key=lambda k: (PLANES.index(k[0]), k[1]))
+    keys.sort(key=lambda k: (FAMILIES.index(k[0]), k[1]))
     base = {(r["plane"], r["mode"]): r for r in run.rows}
     cols = {name: {(r["plane"], r["mode"]): r for r in rows}
             for name, rows in run.columns.items()}
@@ -228,10 +232,17 @@ def write(run: ModesRun, out: Path) -> None:
                ((name, m.plane, m.number, m.frequency_hz, m.period_s)
                 for name, res in run.results.items() for m in res.modes))
     _write_csv(out / "agreement.csv", agreement_columns(run), _agreement_records(run))
-    for plane in PLANES:
+    for plane in _families(run):
         plot_shapes(run, plane, out / f"mode_shapes_{plane}.png")
     (out / "report.md").write_text(markdown(run))
     run.files = [f for f in FILES if (out / f).exists()]
+
+
+def _families(run: ModesRun) -> tuple[str, ...]:
+    """The families of the run: the two planes (a planar static state, also when no method
+    found a mode), or the coupled family of a 3D state when a method returned it."""
+    coupled = any(m.plane == COUPLED for res in run.results.values() for m in res.modes)
+    return (COUPLED,) if coupled else PLANES
 
 
 def _aligned(shape: np.ndarray, ref: np.ndarray) -> np.ndarray:
@@ -244,7 +255,8 @@ def plot_shapes(run: ModesRun, plane: str, path: Path) -> None:
     fams = {name: res.family(plane)[:PLOTTED] for name, res in run.results.items()}
     k = max(1, max(len(f) for f in fams.values()))
     fig, axes = new_figure(k, 1, size=(8.0, 2.2 * k + 0.6))
-    comps = (("x", 0), ("y", 1)) if plane == "in_plane" else (("z", 2),)
+    comps = {"in_plane": (("x", 0), ("y", 1)), "out_of_plane": (("z", 2),)}.get(
+        plane, (("x", 0), ("y", 1), ("z", 2)))
     colors = {"x": "tab:blue", "y": "tab:orange", "z": "tab:green"}
     for i in range(k):
         ax = axes[i][0]
@@ -310,7 +322,7 @@ def markdown(run: ModesRun) -> str:
     lines += ["", f"**{n_ok} of {len(run.rows)} mode pairs meet the target**"
               + ("." if run.all_meet or not run.rows else
                  " (see the rows marked no)."), ""]
-    for plane in PLANES:
+    for plane in _families(run):
         rows = [r for r in run.rows if r["plane"] == plane]
         lines += [f"## {PLANE_TITLES[plane].capitalize()}", ""]
         if not rows:
@@ -360,7 +372,7 @@ def _markdown_with_columns(run: ModesRun) -> str:
                         f"{LABELS.get(n, n)}-BVP" for n, rows in run.columns.items())
               + ")" + ("." if run.all_meet or not total else " (see the rows marked no)."), ""]
     keyed = keyed_rows(run)
-    for plane in PLANES:
+    for plane in _families(run):
         rows = [k for k in keyed if k[0] == plane]
         lines += [f"## {PLANE_TITLES[plane].capitalize()}", ""]
         if not rows:
@@ -406,7 +418,7 @@ def summary_lines(run: ModesRun) -> list[str]:
         out.append(f"  {name}: {res.status.value}, {len(res.modes)} modes in "
                    f"{res.wall_time_s:.2f} s" + ("" if res.converged else f": {res.message}"))
     keyed = keyed_rows(run)
-    for plane in PLANES:
+    for plane in _families(run):
         rows = [k for k in keyed if k[0] == plane]
         if rows:
             out.append(f"  {PLANE_TITLES[plane]}: mode, bvp Hz, vfife Hz, period s, diff, MAC"

@@ -40,7 +40,7 @@ COST = ("runs.csv", "values.csv", "report.md", "error_vs_time.png",
         "dynamics_error.png", "dynamics_ancf.csv", "dynamics_ancf.png")
 #: ``modes`` (and each scene folder of ``reproduce modes``)
 MODES = ("modes.csv", "agreement.csv", "report.md", "mode_shapes_in_plane.png",
-         "mode_shapes_out_of_plane.png")
+         "mode_shapes_out_of_plane.png", "mode_shapes_coupled.png")
 #: each scene folder of ``reproduce cross_current``
 CROSS_CURRENT = ("agreement.csv", "headings.csv", "headings.png", "report.md")
 #: each unit folder of ``reproduce sea_states``: its files (two-methods: a folder per scene

@@ -6,7 +6,9 @@ Degrees of freedom, 5 per node i, global index ``5 i + k``: the translations x, 
 the model: :mod:`vfife.kernels`). For a planar static state (z = 0, directors in the x-y
 plane) ``basis[i, 0] = e_z`` (the in-plane rotation) and ``basis[i, 1] = e_z x d_i`` (it
 tips the director out of the plane). A 3D state's axes are :func:`normal_axes` (Newton's
-statics out of plane, vfife/statics/newton.py).
+statics out of plane, vfife/statics/newton.py, and the coupled modes about a 3D state,
+vfife/modal/modes.py): any two unit axes normal to the director span the same rotations,
+so the eigenvalues do not depend on the choice.
 
 Stiffness: the Hessian of the element strain energy, by central differences of the
 kernel's own element forces and moments (:func:`vfife.kernels.element_pass`, the function
@@ -16,13 +18,15 @@ coordinates ~1 km) and its 10 DOFs (two end translations, two end rotations) are
 perturbed one at a time in all elements at once (40 calls in all, see :data:`STEP`). The
 element forces are the exact gradient of the element energy and the moments are the
 generalised forces of rotations perpendicular to the director, so the result is the
-energy's Hessian in these coordinates: symmetric at any state (the mixed term of two
-rotations is along the director, where the moment has no component). Weight and the
-static drag of a current are constant nodal forces, dead loads (no stiffness: the drag is
-frozen at its static value, the model stated in :mod:`bvp.modal.modes`, whose rotating-frame
-equations carry the matching terms); the seabed adds its linear spring ``k x tributary
-length`` [N/m] in y at the nodes in contact (y < 0); friction, the drag's dependence on
-the motion and damping are not in this undamped linearisation.
+energy's Hessian in these coordinates: symmetric at any state, planar or 3D (the
+second-order term of two rotations about unit axes a, b normal to the director d is
+g.(a x (b x d)) = -(g.d)(a.b), g the energy's gradient in d: symmetric in a and b, since
+a.d = b.d = 0). Weight and the static drag of a current (in or across the plane) are
+constant nodal forces, dead loads (no stiffness: the drag is frozen at its static value,
+the model stated in :mod:`bvp.modal.modes`, whose rotating-frame equations carry the
+matching terms); the seabed adds its linear spring ``k x tributary length`` [N/m] in y at
+the nodes in contact (y < 0), nothing laterally; friction, the drag's dependence on the
+motion and damping are not in this undamped linearisation.
 
 Mass: per node ``m I + m_a (I - d d^T)`` (pipe + contents, the added mass normal to the
 director, exactly as the kernels integrate it) and the rotational inertia ``J`` on both
@@ -67,6 +71,10 @@ class Tangent:
     asymmetry: float = 0.0
     coupling: float = 0.0
     info: dict = field(default_factory=dict)
+
+    def free_dofs(self) -> np.ndarray:
+        """All the free global DOF indices (sorted): the coupled problem of a 3D state."""
+        return np.setdiff1d(np.arange(self.K.shape[0]), self.fixed)
 
     def family(self, plane: str) -> np.ndarray:
         """Free global DOF indices of one family (sorted)."""
