@@ -47,9 +47,9 @@ def out_of_plane_share(mode: "Mode") -> float:
 
 @dataclass(frozen=True)
 class Mode:
-    """One natural mode: ``plane`` (one of :data:`PLANES`, or :data:`COUPLED`), ``number``
-    (1-based within its plane, by frequency), ``frequency_hz`` [Hz], ``s`` (k,) [m] and ``shape`` (k, 3)
-    [-] (see the module docstring)."""
+    """One natural mode: ``plane`` (one of :data:`PLANES`, or :data:`COUPLED`),
+    ``number`` (1-based within its plane, by frequency), ``frequency_hz`` [Hz], ``s``
+    (k,) [m] and ``shape`` (k, 3) [-] (see the module docstring)."""
 
     plane: str
     number: int

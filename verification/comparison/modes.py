@@ -7,7 +7,9 @@ vfife_equivalent` of the scene (a Wang-form scene is converted; its arc lengths 
 reported from the BVP touchdown, the converted s minus ``s_shift``), each about its own
 static equilibrium (``bvp.modal.modes.solve_modes``, ``vfife.modal.modes.solve_modes``; the shared
 model is stated in :mod:`riser.results.modes`, its equations in :mod:`bvp.modal.modes`: undamped, the
-static drag of a current frozen as a dead load). Modes are paired by plane and number; the
+static drag of a current frozen as a dead load). Modes are paired by plane and number (about
+a 3D static state the one ``coupled`` family, by number: two methods that order two close
+modes differently fail on the MAC, never silently pass); the
 agreement of a pair is the relative frequency difference of the VFIFE from the BVP and
 the MAC of the two shapes interpolated on the VFIFE's nodes (inside the arc-length range
 both cover). The target: |difference| <= 0.5 % and MAC >= 0.99.
@@ -238,6 +240,28 @@ def write(run: ModesRun, out: Path) -> None:
     run.files = [f for f in FILES if (out / f).exists()]
 
 
+def _title(plane: str) -> str:
+    """A family's section title (its first letter capital, the rest as written)."""
+    t = PLANE_TITLES[plane]
+    return t[0].upper() + t[1:]
+
+
+#: what a report says of a coupled family, before its table
+COUPLED_NOTE = ("The static state is 3D (out of the x-y plane): the in- and out-of-plane "
+                "motions couple, and the modes form one family numbered by frequency, "
+                "paired by number. The share is the BVP mode's squared displacement along "
+                "z over its total, integrated along s (0 in plane, 1 across it).")
+
+
+def _shares(run: ModesRun) -> dict[int, float]:
+    """The BVP's out-of-plane share of each coupled mode, by number (empty without)."""
+    res = run.results.get("bvp")
+    shares = res.info.get("out_of_plane_share") if res is not None else None
+    if not shares:
+        return {}
+    return {m.number: sh for m, sh in zip(res.family(COUPLED), shares)}
+
+
 def _families(run: ModesRun) -> tuple[str, ...]:
     """The families of the run: the two planes (a planar static state, also when no method
     found a mode), or the coupled family of a 3D state when a method returned it."""
@@ -324,15 +348,19 @@ def markdown(run: ModesRun) -> str:
                  " (see the rows marked no)."), ""]
     for plane in _families(run):
         rows = [r for r in run.rows if r["plane"] == plane]
-        lines += [f"## {PLANE_TITLES[plane].capitalize()}", ""]
+        lines += [f"## {_title(plane)}", ""]
         if not rows:
             lines += ["No mode pair: a method found no mode of this plane.", ""]
             continue
+        shares = _shares(run) if plane == COUPLED else {}
+        share_head = ("out-of-plane share",) if shares else ()
+        if shares:
+            lines += [COUPLED_NOTE, ""]
         lines.append(md_table(
-            ("mode", "BVP f [Hz]", "VFIFE f [Hz]", "BVP T [s]", "VFIFE T [s]", "difference",
-             "MAC", "meets target"),
-            [(r["mode"], r.value("bvp"), r.value("vfife"),
-              1.0 / r.value("bvp"), 1.0 / r.value("vfife"),
+            ("mode", *share_head, "BVP f [Hz]", "VFIFE f [Hz]", "BVP T [s]", "VFIFE T [s]",
+             "difference", "MAC", "meets target"),
+            [(r["mode"], *((f"{shares.get(r['mode'], float('nan')):.3f}",) if shares else ()),
+              r.value("bvp"), r.value("vfife"), 1.0 / r.value("bvp"), 1.0 / r.value("vfife"),
               pct(r.rel_diff), f"{r['mac']:.5f}", r.passed) for r in rows]))
         lines += ["", f"![{plane} mode shapes](mode_shapes_{plane}.png)", ""]
     lines += ["Periods are for VIV screening: a vortex-shedding frequency St U / D (St ~ 0.2) "
@@ -374,12 +402,16 @@ def _markdown_with_columns(run: ModesRun) -> str:
     keyed = keyed_rows(run)
     for plane in _families(run):
         rows = [k for k in keyed if k[0] == plane]
-        lines += [f"## {PLANE_TITLES[plane].capitalize()}", ""]
+        lines += [f"## {_title(plane)}", ""]
         if not rows:
             lines += ["No mode pair: a method found no mode of this plane.", ""]
             continue
-        header = ["mode", "BVP f [Hz]", "VFIFE f [Hz]", "BVP T [s]", "VFIFE T [s]",
-                  "difference", "MAC", "meets target"]
+        shares = _shares(run) if plane == COUPLED else {}
+        if shares:
+            lines += [COUPLED_NOTE, ""]
+        header = ["mode", *(["out-of-plane share"] if shares else []), "BVP f [Hz]",
+                  "VFIFE f [Hz]", "BVP T [s]", "VFIFE T [s]", "difference", "MAC",
+                  "meets target"]
         for n in run.columns:
             lab = LABELS.get(n, n)
             header += [f"{lab} f [Hz]", f"{lab} difference", f"{lab} MAC",
@@ -388,7 +420,7 @@ def _markdown_with_columns(run: ModesRun) -> str:
         for _, mode, r, cols in rows:
             bvp = r.value("bvp") if r is not None else next(
                 c.value("bvp") for c in cols.values() if c is not None)
-            cells = [mode, bvp]
+            cells = [mode, *([f"{shares.get(mode, float('nan')):.3f}"] if shares else []), bvp]
             if r is not None:
                 cells += [r.value("vfife"), 1.0 / bvp, 1.0 / r.value("vfife"),
                           pct(r.rel_diff), f"{r['mac']:.5f}", r.passed]

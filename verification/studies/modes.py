@@ -4,7 +4,8 @@ BVP, the VFIFE and the ANCF (the command's columns), one unit per scene into
 ``reports/modes/SCENE/`` (the files of ``riser-verify modes``, see
 :mod:`verification.comparison.modes`), against the target of issue 14 (issue 46 for the
 ANCF): the first 10 in-plane and 10 out-of-plane modes within 0.5 % in frequency and
-MAC >= 0.99 of the BVP's."""
+MAC >= 0.99 of the BVP's; about a 3D static state (issue 50) the first 20 coupled
+modes."""
 
 from __future__ import annotations
 
@@ -18,8 +19,12 @@ from verification.comparison.modes import COLUMNS, TARGET_MAC, TARGET_REL_DIFF, 
 
 from .study import Study
 
-#: the scenes of the study (issue 14's three, and issue 46's TTR)
-MODES_SCENES = ("wang2014-baseline", "yu2021-a3", "scr-steel", "ttr-steel")
+#: the scenes of the study (issue 14's three, issue 46's TTR, and issue 50's three 3D
+#: static states: a current across the plane, one turning with depth, a hang-off out of
+#: the anchor's plane; their modes one coupled family)
+MODES_SCENES = ("wang2014-baseline", "yu2021-a3", "scr-steel", "ttr-steel",
+                "scr-steel-current-90", "yu2021-a3-current-turning",
+                "yu2021-a3-hang-off-offset")
 #: modes per plane
 COUNT = 10
 
@@ -53,4 +58,5 @@ def index_row(d: Path):
 #: measured wall times [s] of the units in ``reproduce all`` (2 processes, 2 cores)
 STUDY = Study("modes", MODES_SCENES, run_unit, index_row,
               seconds={"yu2021-a3": 50, "wang2014-baseline": 30, "scr-steel": 25,
-                       "ttr-steel": 20})
+                       "ttr-steel": 20, "scr-steel-current-90": 35,
+                       "yu2021-a3-current-turning": 180, "yu2021-a3-hang-off-offset": 150})
