@@ -254,7 +254,9 @@ def expected_waves(w: dict | None) -> dict | None:
     spectrum = None if sp is None else {
         "kind": sp["kind"], "hs": sp.get("hs"), "tp": sp.get("tp"), "gamma": sp.get("gamma"),
         "omega": _numbers(sp.get("omega")), "density": _numbers(sp.get("density")),
-        "heading_deg": sp.get("heading_deg", 0.0), "components": sp.get("components", 200),
+        "heading_deg": sp.get("heading_deg", 0.0), "spreading": sp.get("spreading", "none"),
+        "spreading_exponent": sp.get("spreading_exponent"),
+        "components": sp.get("components", 200),
         "omega_min": sp.get("omega_min"), "omega_max": sp.get("omega_max"),
         "seed": sp.get("seed", 1)}
     trains = tuple({"height": t["height"], "period": t["period"],

@@ -58,15 +58,26 @@ def check_sea_state(scene) -> None:
     if tm is not None:
         raise err("dynamics.top_motion", "not with [vessel]: the vessel's RAOs move the "
                   "hang-off (give one or the other)")
-    rel = [(hd - vessel.heading_deg) % 360.0 for hd in waves.headings]
+    headings, spread = list(waves.headings), []
+    sp = waves.spectrum
+    if sp is not None and sp.spread:        # a spread sea: its components' own headings
+        headings.pop()
+        comp = waves.components(h, scene.gravity, (0.0, 0.0))
+        spread = [math.degrees(b) for b, lab in zip(comp.heading, comp.labels)
+                  if lab == "spectrum"]
+    rel = [(hd - vessel.heading_deg) % 360.0 for hd in headings + spread]
     tabs = [t.heading_deg % 360.0 for t in vessel.raos]
-    for hd, r in zip(waves.headings, rel):
+    for i, (hd, r) in enumerate(zip(headings + spread, rel)):
         gap = min(min(abs(r - t), 360.0 - abs(r - t)) for t in tabs)
         if (len(tabs) == 1 and gap > 1e-9) or gap > RAO_HEADING_REACH:
             what = ("the one RAO table's heading" if len(tabs) == 1
                     else f"every RAO table's heading (> {RAO_HEADING_REACH:g} deg)")
-            raise err("vessel.raos", f"no RAO table for the waves' heading {hd:g} deg "
-                      f"({r:g} deg relative to the vessel's surge axis): it differs from "
+            whose = ("the waves' heading" if i < len(headings) else
+                     f"the heading of a component of the spread sea ({sp.spreading} about "
+                     f"{sp.heading_deg:g} deg)")
+            fmt = "g" if i < len(headings) else ".4g"
+            raise err("vessel.raos", f"no RAO table for {whose} {hd:{fmt}} deg "
+                      f"({r:{fmt}} deg relative to the vessel's surge axis): it differs from "
                       f"{what} ({', '.join(f'{t:g}' for t in tabs)} deg); give a table "
                       "for that heading")
     check_vessel_motion(scene)
@@ -164,6 +175,11 @@ def sea_state_out_of_plane(scene) -> tuple[str, str] | None:
     waves = scene.waves
     if waves is None:
         return None
+    sp = waves.spectrum
+    if sp is not None and sp.spread:
+        return ("environment.waves.spectrum.spreading", f"the sea is short-crested "
+                f"({sp.spreading} about {sp.heading_deg:g} deg): its components travel out "
+                "of the x-y plane")
     if not waves.is_planar:
         return ("environment.waves", "a wave travels out of the x-y plane (headings "
                 + ", ".join(f"{h:g}" for h in waves.headings) + " deg)")

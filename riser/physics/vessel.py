@@ -16,8 +16,12 @@ roll, pitch, yaw) and a *phase lag* [deg] relative to the wave crest at the vess
 origin, OrcaFlex's convention: a component eta = a cos(omega t - epsilon_o) at the RAO
 origin moves the vessel by R a cos(omega t - epsilon_o - phi_R) in that degree of
 freedom. Between the given periods the amplitude and the (unwrapped) phase are linear in
-the period, constant beyond them; between headings linear in the heading (the table is
-periodic over 360 deg; one table: every heading).
+the period, constant beyond them; between headings likewise the amplitude and the
+unwrapped phase are linear in the heading, periodic over 360 deg (the two neighbouring
+tables' values at the component's period, the phase from one to the other the shorter
+way round, np.unwrap's rule for consecutive values, as along the periods: a phase that
+passes through +-180 deg between two tables goes through 180 deg, where the complex
+values' mean would shrink the amplitude); one table: every heading.
 
 Motion of the hang-off: d = u + theta x r (small rotations: |theta| << 1 rad, a
 displacement error of ~|theta|^2 |r| / 2, stated in the docs; a scene refuses
@@ -100,19 +104,25 @@ class RAOTable(Part):
                     raise error(name, f"must have one entry per period ({len(p)}), got "
                                 f"{len(getattr(self, name))}")
 
-    def complex_rao(self, periods) -> np.ndarray:
-        """(6, n) complex RAOs R e^{-i phi} at ``periods`` [s] (rotations in rad/m):
-        amplitude and unwrapped phase linear in the period, constant beyond the table."""
+    def amplitude_phase(self, periods) -> tuple[np.ndarray, np.ndarray]:
+        """((6, n) amplitudes R [m/m; rotations rad/m], (6, n) phase lags phi [rad]) at
+        ``periods`` [s]: amplitude and unwrapped phase linear in the period, constant
+        beyond the table."""
         T = np.asarray(periods, float)
-        out = np.empty((6, T.size), complex)
+        amps = np.empty((6, T.size))
+        phases = np.empty((6, T.size))
         for j, dof in enumerate(DOFS):
             amp = np.interp(T, self.periods, getattr(self, dof))
             ph = np.unwrap(np.radians(getattr(self, f"{dof}_phase_deg")))
-            phase = np.interp(T, self.periods, ph)
-            if j >= 3:
-                amp = np.radians(amp)
-            out[j] = amp * np.exp(-1j * phase)
-        return out
+            phases[j] = np.interp(T, self.periods, ph)
+            amps[j] = np.radians(amp) if j >= 3 else amp
+        return amps, phases
+
+    def complex_rao(self, periods) -> np.ndarray:
+        """(6, n) complex RAOs R e^{-i phi} at ``periods`` [s] (rotations in rad/m):
+        amplitude and unwrapped phase linear in the period, constant beyond the table."""
+        amps, phases = self.amplitude_phase(periods)
+        return amps * np.exp(-1j * phases)
 
 
 @dataclass(frozen=True)
@@ -158,23 +168,25 @@ class Vessel(Part):
 
     def complex_rao(self, periods, headings_deg) -> np.ndarray:
         """(6, n) complex RAOs for wave components of ``periods`` [s] travelling at scene
-        ``headings_deg`` (each (n,)): linear between the tables' relative headings."""
+        ``headings_deg`` (each (n,)): amplitude and unwrapped phase linear between the
+        tables' relative headings, periodic over 360 deg (the module docstring)."""
         T = np.atleast_1d(np.asarray(periods, float))
         rel = (np.atleast_1d(np.asarray(headings_deg, float)) - self.heading_deg) % 360.0
         tabs = sorted(self.raos, key=lambda t: t.heading_deg % 360.0)
         if len(tabs) == 1:
             return tabs[0].complex_rao(T)
         hs = np.array([t.heading_deg % 360.0 for t in tabs])
-        values = np.stack([t.complex_rao(T) for t in tabs])      # (m, 6, n)
-        out = np.empty((6, T.size), complex)
-        for i, h in enumerate(rel):
-            j = int(np.searchsorted(hs, h, side="right")) - 1    # the table below (periodic)
-            j0, j1 = j % len(hs), (j + 1) % len(hs)
-            h0, h1 = hs[j0], hs[j1]
-            span = (h1 - h0) % 360.0 or 360.0
-            w = ((h - h0) % 360.0) / span
-            out[:, i] = (1.0 - w) * values[j0, :, i] + w * values[j1, :, i]
-        return out
+        amps, phases = (np.stack(v) for v in zip(*(t.amplitude_phase(T) for t in tabs)))
+        j = np.searchsorted(hs, rel, side="right") - 1          # the table below (periodic)
+        j0, j1 = j % len(hs), (j + 1) % len(hs)
+        h0 = hs[j0]
+        span = np.where((hs[j1] - h0) % 360.0 == 0.0, 360.0, (hs[j1] - h0) % 360.0)
+        w = ((rel - h0) % 360.0) / span                           # (n,) in [0, 1)
+        i = np.arange(T.size)
+        a0, a1 = amps[j0, :, i].T, amps[j1, :, i].T               # (6, n)
+        p0, p1 = phases[j0, :, i].T, phases[j1, :, i].T
+        p1 = np.unwrap(np.stack([p0, p1]), axis=0)[1]             # the shorter way round
+        return ((1.0 - w) * a0 + w * a1) * np.exp(-1j * ((1.0 - w) * p0 + w * p1))
 
     def hang_off_amplitudes(self, periods, headings_deg) -> np.ndarray:
         """(3, n) complex amplitudes of the hang-off's displacement (x, y, z) [m] per metre

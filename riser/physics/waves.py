@@ -34,6 +34,35 @@ step so that every frequency is a whole multiple of d omega: the sea repeats exa
 response record of that length measures the response's variance without the sampling
 error of a random record).
 
+Short-crested seas (``spreading``): the spectrum's energy spread over directions theta
+about the mean heading theta_m (``heading_deg``), S(omega, theta) = S(omega) D(theta -
+theta_m), D a probability density independent of omega:
+
+- 'none' (the default): long-crested, every component at theta_m;
+- 'cos2s': D(phi) = C_s cos^(2s)(phi / 2) on (-180, 180] deg, C_s = Gamma(s + 1) /
+  (2 sqrt(pi) Gamma(s + 1/2)); E[cos phi] = s / (s + 1), E[cos 2 phi] = s (s - 1) / ((s
+  + 1) (s + 2));
+- 'cosn': D(phi) = C_n cos^n(phi) for |phi| <= 90 deg (0 beyond: nothing travels against
+  the mean heading), C_n = Gamma(n / 2 + 1) / (sqrt(pi) Gamma((n + 1) / 2)); E[cos^2 phi]
+  = (n + 1) / (n + 2), E[cos 2 phi] = n / (n + 2) (Wallis' recursion);
+
+s or n the ``spreading_exponent``. Both cumulative distributions are closed forms, the
+regularised incomplete beta function I (scipy.special.betainc; its inverse betaincinv):
+F(phi) = 1/2 + sign(phi) I_x(1/2, b) / 2 with x = sin^2(phi / 2), b = s + 1/2 (cos2s) or
+x = sin^2(phi), b = (n + 1) / 2 (cosn) (the substitution x = sin^2 turns the integral of
+cos^(2b - 1) into the incomplete beta integral). The component j of the sea (one per
+frequency) travels at theta_m + F^{-1}(q_j): the quantiles q_j = (m_j + u_j) / N are
+stratified, one in each of the N equal slices m = 0 ... N - 1 of probability, u_j uniform
+in [0, 1) drawn by the same generator after the phases (so the phases are those of the
+long-crested sea of the same seed, and 'none' draws nothing more: its sea is the same to
+the bit); the slice m_j of component j is the rank of frac(j g + u_0) (g = (sqrt 5 - 1) /
+2, the golden ratio's fraction, u_0 drawn by the generator), a randomly shifted Kronecker
+sequence: neighbouring frequencies take directions far apart, every band of frequencies
+sees the whole spread, and a linear response's variance sum_j a_j^2 |H(omega_j,
+theta_j)|^2 / 2 converges to the double integral like 1/N (a random order of the slices,
+a Latin hypercube, converges like 1/sqrt(N): measured in tests/test_short_crested.py and
+docs/short-crested-seas.md).
+
 Kinematics above the mean level (``stretching``): 'wheeler' maps the wetted column [0, h
 + eta] onto [0, h] (the velocity at the crest is the linear theory's at the mean level);
 'vertical' holds the linear theory's value at the mean level from y = h up to the surface.
@@ -45,6 +74,7 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.special import betainc, betaincinv, gammaln
 
 from ..spec import Part, check_fields, part_error, spec
 
@@ -58,6 +88,11 @@ MIN_TP_OVER_ROOT_HS = math.sqrt(2.0 * math.pi * 15.0 / 9.81)
 OMEGA_RANGE = (0.5, 3.5)
 SPECTRA = ("jonswap", "pierson-moskowitz", "table")
 STRETCHING = ("wheeler", "vertical")
+#: directional spreading functions of a spectrum (see the module docstring)
+SPREADING = ("none", "cos2s", "cosn")
+#: the golden ratio's fraction (sqrt 5 - 1) / 2: the step of the Kronecker sequence that
+#: orders the spreading's strata over the components
+GOLDEN = 0.5 * (math.sqrt(5.0) - 1.0)
 
 
 @dataclass(frozen=True)
@@ -101,7 +136,16 @@ class WaveSpectrum(Part):
                                              "not all zero", default_doc="required (table)",
                                              doc="spectral density S(omega) of the table")
     heading_deg: float = spec(0.0, ge=-360.0, le=360.0, unit="deg",
-                              doc="direction of travel (long-crested sea)")
+                              doc="direction of travel (a spread sea: the mean direction)")
+    spreading: str = spec("none", "string", choices=SPREADING,
+                          doc="directional spreading about heading_deg: none (long-crested), "
+                              "cos2s: D ~ cos^(2s)((theta - heading) / 2), cosn: D ~ "
+                              "cos^n(theta - heading) within +-90 deg")
+    spreading_exponent: float | None = spec(None, ge=1.0, le=100.0,
+                                            also="only with spreading cos2s or cosn",
+                                            default_doc="required (cos2s, cosn)",
+                                            doc="the spreading's exponent: s of cos2s, n of "
+                                                "cosn (larger: narrower)")
     components: int = spec(200, "integer", ge=4, le=5000,
                            doc="number of components (equal frequency steps)")
     omega_min: float | None = spec(None, gt=0.0, le=20.0, unit="rad/s",
@@ -112,7 +156,8 @@ class WaveSpectrum(Part):
                                    default_doc="3.5 x peak (table: its last omega)",
                                    doc="highest frequency of the discretisation")
     seed: int = spec(1, "integer", ge=0, le=2 ** 63 - 1,
-                     doc="seed of the random phases (PCG64): the same sea every run")
+                     doc="seed of the random phases and a spread sea's directions "
+                         "(PCG64): the same sea every run")
 
     def __post_init__(self) -> None:
         check_fields(self)
@@ -150,6 +195,12 @@ class WaveSpectrum(Part):
                             f"Tp {self.tp:g} s) must be >= {MIN_TP_OVER_ROOT_HS:.3g}: a "
                             "steeper sea breaks (significant steepness > 1/15); check hs "
                             "[m] and tp [s]")
+        if self.spreading == "none" and self.spreading_exponent is not None:
+            raise error("spreading_exponent", "only with spreading = 'cos2s' or 'cosn' (a "
+                        "long-crested sea has no spreading)")
+        if self.spreading != "none" and self.spreading_exponent is None:
+            raise error("spreading_exponent", f"required with spreading = "
+                        f"{self.spreading!r} (s of cos^(2s)(phi / 2), n of cos^n(phi))")
         lo, hi = self.omega_range
         if not hi > lo:
             raise error("omega_max", f"must be > omega_min = {lo:g} rad/s, got {hi:g}")
@@ -215,6 +266,80 @@ class WaveSpectrum(Part):
         dw = (hi - lo) / self.components
         first = max(1, int(round(lo / dw + 0.5)))
         return dw * (first + np.arange(self.components)), dw
+
+    @property
+    def spread(self) -> bool:
+        """True for a short-crested sea (``spreading`` other than 'none')."""
+        return self.spreading != "none"
+
+    def spreading_density(self, phi) -> np.ndarray:
+        """The spreading function D(phi) [1/rad] at angles phi [rad] from the mean heading
+        (a probability density: its integral over a turn is 1; see the module docstring).
+        A long-crested sea has no density: ValueError."""
+        phi = np.remainder(np.asarray(phi, float) + math.pi, 2.0 * math.pi) - math.pi
+        e = self._exponent()
+        if self.spreading == "cos2s":
+            c = math.exp(gammaln(e + 1.0) - gammaln(e + 0.5)) / (2.0 * math.sqrt(math.pi))
+            return c * np.cos(0.5 * phi) ** (2.0 * e)
+        c = math.exp(gammaln(0.5 * e + 1.0) - gammaln(0.5 * (e + 1.0))) / math.sqrt(math.pi)
+        return np.where(np.abs(phi) <= 0.5 * math.pi,
+                        c * np.abs(np.cos(phi)) ** e, 0.0)
+
+    def spreading_cdf(self, phi) -> np.ndarray:
+        """The cumulative distribution F(phi) of the spreading at angles phi [rad] from
+        the mean heading, phi in [-pi, pi] (cosn: 0 below -pi/2, 1 above pi/2), in closed
+        form by the regularised incomplete beta function (the module docstring)."""
+        phi = np.asarray(phi, float)
+        e = self._exponent()
+        if self.spreading == "cos2s":
+            x, b = np.sin(0.5 * phi) ** 2, e + 0.5
+        else:
+            phi = np.clip(phi, -0.5 * math.pi, 0.5 * math.pi)
+            x, b = np.sin(phi) ** 2, 0.5 * (e + 1.0)
+        return 0.5 + 0.5 * np.sign(phi) * betainc(0.5, b, x)
+
+    def spreading_angle(self, q) -> np.ndarray:
+        """The inverse of :meth:`spreading_cdf`: the angle phi [rad] from the mean heading
+        of the quantiles q in [0, 1] (closed form: scipy.special.betaincinv)."""
+        q = np.asarray(q, float)
+        e = self._exponent()
+        b = e + 0.5 if self.spreading == "cos2s" else 0.5 * (e + 1.0)
+        x = betaincinv(0.5, b, np.clip(np.abs(2.0 * q - 1.0), 0.0, 1.0))
+        half = np.arcsin(np.sqrt(x))
+        return np.sign(q - 0.5) * (2.0 * half if self.spreading == "cos2s" else half)
+
+    def spreading_moments(self) -> tuple[float, float]:
+        """(E[cos phi], E[cos 2 phi]) of the spreading (closed forms; the module
+        docstring): the variance of a horizontal kinematic quantity along a direction at
+        an angle alpha to the mean heading goes with E[cos^2(phi - alpha)] = (1 + cos(2
+        alpha) E[cos 2 phi]) / 2 (D is even)."""
+        if not self.spread:
+            return 1.0, 1.0
+        e = self._exponent()
+        if self.spreading == "cos2s":
+            return e / (e + 1.0), e * (e - 1.0) / ((e + 1.0) * (e + 2.0))
+        c1 = math.exp(2.0 * gammaln(0.5 * e + 1.0) - gammaln(0.5 * (e + 1.0))
+                      - gammaln(0.5 * (e + 3.0)))
+        return c1, e / (e + 2.0)
+
+    def _exponent(self) -> float:
+        if not self.spread:
+            raise ValueError("a long-crested sea (spreading = 'none') has no spreading "
+                             "function")
+        return float(self.spreading_exponent)
+
+    def component_headings(self, rng: np.random.Generator) -> np.ndarray:
+        """The directions [rad] of the ``components`` components of a spread sea, drawn by
+        ``rng`` (the generator of the phases, after them): stratified quantiles in the
+        order of a randomly shifted Kronecker sequence (the module docstring)."""
+        n = self.components
+        u0 = rng.uniform(0.0, 1.0)
+        u = rng.uniform(0.0, 1.0, n)
+        order = np.argsort(np.remainder(np.arange(n) * GOLDEN + u0, 1.0), kind="stable")
+        strata = np.empty(n)
+        strata[order] = np.arange(n)
+        q = (strata + u) / n
+        return math.radians(self.heading_deg) + self.spreading_angle(q)
 
     def moment(self, order: int = 0, points: int = 20001) -> float:
         """The spectral moment m_n = int omega^n S(omega) d omega [m2 (rad/s)^n] of the
@@ -306,7 +431,8 @@ class Waves(Part):
 
     @property
     def headings(self) -> tuple[float, ...]:
-        """Every heading [deg] of the trains and the sea."""
+        """Every heading [deg] of the trains and the sea (a spread sea: its mean heading;
+        its components' own are :meth:`components`')."""
         out = [tr.heading_deg for tr in self.trains]
         if self.spectrum is not None:
             out.append(self.spectrum.heading_deg)
@@ -314,7 +440,10 @@ class Waves(Part):
 
     @property
     def is_planar(self) -> bool:
-        """True when every wave travels along x (headings 0 or 180 deg)."""
+        """True when every wave travels along x (headings 0 or 180 deg; a spread sea's
+        components travel at many headings: never planar)."""
+        if self.spectrum is not None and self.spectrum.spread:
+            return False
         return all(abs(math.sin(math.radians(h))) < 1e-12 for h in self.headings)
 
     def components(self, depth: float, gravity: float,
@@ -338,7 +467,10 @@ class Waves(Part):
             amp.extend(a[keep])
             omg.extend(w[keep])
             ph.extend(phases[keep])
-            hd.extend([math.radians(sp.heading_deg)] * int(np.sum(keep)))
+            if sp.spread:
+                hd.extend(sp.component_headings(rng)[keep])
+            else:
+                hd.extend([math.radians(sp.heading_deg)] * int(np.sum(keep)))
             labels.extend(["spectrum"] * int(np.sum(keep)))
         omg = np.asarray(omg, float)
         k = wave_numbers(omg, depth, gravity)

@@ -214,4 +214,11 @@ def wave_file_text(scene) -> tuple[str, list[str]]:
     if len(set(map(float, comp.heading))) > 1:
         notes.append("Several headings: each component carries its own beta (MoorDyn-C "
                      "sums them; a short-crested sea is the sum of its components).")
+    sp = waves.spectrum
+    if sp is not None and sp.spread:
+        notes.append(f"The spectrum is short-crested ({sp.spreading}, exponent "
+                     f"{sp.spreading_exponent:g}, about {sp.heading_deg:g} deg): its "
+                     "components travel at the directions its seed draws "
+                     "(riser.physics.waves), each row its own beta; MoorDyn-C's "
+                     "SpectrumKin sums them with a direction per component, the same sea.")
     return "\n".join(lines) + "\n", notes
