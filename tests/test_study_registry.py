@@ -68,6 +68,10 @@ def expected_files(name: str, folder: Path) -> set[str]:
                 if not Path(f).name.startswith("transfer")}
     if name == "design":
         return set(outdir.DESIGN_UNITS[folder.name])
+    if name == "modes":             # a 3D static state's one family, or the two planes'
+        coupled = "coupled" in (folder / "agreement.csv").read_text()
+        return names - set(outdir.MODES_PLANAR_PLOTS if coupled else
+                           outdir.MODES_COUPLED_PLOTS)
     if name == "nonlinear":         # a folder per case; controls.csv where they ran
         controlled = {f"heave-{a:g}m" for a in nl_study.HEAVE_AMPLITUDES
                       if a not in nl_study.BORROW}

@@ -75,7 +75,7 @@ from .harmonic import grid, prepare, require_harmonic, respond
 from ..modal.equations import build_pieces
 
 #: the quantities of a sea response (as :data:`riser.results.response.QUANTITIES`)
-QUANTITIES = ("dx", "dy", "dz", "tension", "moment", "curvature")
+QUANTITIES = ("dx", "dy", "dz", "tension", "moment", "moment_out", "curvature")
 #: default grid intervals over the line
 INTERVALS = 1500
 #: under-relaxation of the drag coefficients' fixed point
@@ -175,7 +175,7 @@ def solve_sea(scene: Scene, static: SolveResult | None = None, duration: float =
             Y, Z = respond(setup, w, motions[:, j], flows[j])
             for key, v in (("dx", Y[:, 0]), ("dy", Y[:, 1]), ("dz", Z[:, 0]),
                            ("tension", Y[:, 5]), ("moment", Y[:, 3]),
-                           ("curvature", Y[:, 3] / EI)):
+                           ("moment_out", Z[:, 2]), ("curvature", Y[:, 3] / EI)):
                 Q[key][j] = v
             if setup.has_drag:
                 Ym, Zm = 0.5 * (Y[1:] + Y[:-1]), 0.5 * (Z[1:] + Z[:-1])

@@ -41,6 +41,9 @@ COST = ("runs.csv", "values.csv", "report.md", "error_vs_time.png",
 #: ``modes`` (and each scene folder of ``reproduce modes``)
 MODES = ("modes.csv", "agreement.csv", "report.md", "mode_shapes_in_plane.png",
          "mode_shapes_out_of_plane.png", "mode_shapes_coupled.png")
+#: of those, the plots of a planar static state's two families, and a 3D one's family
+MODES_PLANAR_PLOTS = ("mode_shapes_in_plane.png", "mode_shapes_out_of_plane.png")
+MODES_COUPLED_PLOTS = ("mode_shapes_coupled.png",)
 #: each scene folder of ``reproduce cross_current``
 CROSS_CURRENT = ("agreement.csv", "headings.csv", "headings.png", "report.md")
 #: each unit folder of ``reproduce sea_states``: its files (two-methods: a folder per scene
@@ -64,6 +67,8 @@ DESIGN_UNITS = {
     "utilisation": ("utilisation.csv", "cases.csv", "utilisation.png", "report.md"),
     "fatigue": ("stations.csv", "sea_states.csv", "fatigue_along_s.csv", "fatigue.png",
                 "report.md")}
+# the fatigue in seas 45 and 90 deg off the line's plane (issue 50): the fatigue's files
+DESIGN_UNITS.update({unit: DESIGN_UNITS["fatigue"] for unit in ("fatigue-45", "fatigue-90")})
 DESIGN = tuple(dict.fromkeys(f for files in DESIGN_UNITS.values() for f in files))
 #: ``fatigue SCENE``: the fatigue unit's files and its summary.json (the verdict's keys);
 #: its units' records in ``cells/`` are kept (a rerun resumes from them)

@@ -3,7 +3,8 @@ static DNV-ST-F201 utilisation along a steel catenary and a steel lazy wave by b
 methods) and :mod:`.fatigue` with :mod:`.fatigue_report` (fatigue over a scatter diagram
 by the two time domains' rainflow, the VFIFE's and the ANCF's (issue 47: judged against
 each other at the touchdown), and the frequency domain's record and spectral estimates,
-scr-steel-fatigue at the touchdown and the hang-off)."""
+scr-steel-fatigue at the touchdown and the hang-off; and the same in seas 45 and 90 deg
+off the line's plane, issue 50)."""
 
 from __future__ import annotations
 
@@ -17,13 +18,25 @@ from verification.catalog import resolve
 from ..study import Study
 from . import fatigue, fatigue_report, fatigue_scatter, utilisation
 
+#: the fatigue in a sea off the line's plane (issue 50): unit -> the sea's heading [deg]
+#: from the line's plane, on :data:`OBLIQUE_SCENE`
+OBLIQUE = {"fatigue-45": 45.0, "fatigue-90": 90.0}
 #: the units of the study, each a folder of reports/design/
-UNITS = ("utilisation", "fatigue")
+UNITS = ("utilisation", "fatigue", *OBLIQUE)
 #: the fatigue study's scene and the VFIFE's element length there [m]: 2 m, 0.6 of the
 #: bending length at the touchdown; at 1 m the curvature's standard deviation there moves
 #: by 0.8 % (measured: 4.754e-4 against 4.791e-4 1/m, Hs 3 m)
 FATIGUE_SCENE = "scr-steel-fatigue"
 FATIGUE_ELEMENT_LENGTH = 2.0
+#: the scene of the oblique seas: FATIGUE_SCENE with RAOs at 0, 45 and 90 deg
+OBLIQUE_SCENE = "scr-steel-fatigue-oblique"
+
+
+def oblique_scene(unit: str):
+    """:data:`OBLIQUE_SCENE` with its spectrum's heading the unit's (:data:`OBLIQUE`)."""
+    sc = resolve(OBLIQUE_SCENE)
+    sp = sc.waves.spectrum.replace(heading_deg=OBLIQUE[unit])
+    return sc.replace(waves=sc.waves.replace(spectrum=sp))
 
 
 def run_unit(unit: str, out: Path, note: str = "", full: bool = False) -> str:
@@ -31,12 +44,13 @@ def run_unit(unit: str, out: Path, note: str = "", full: bool = False) -> str:
     folder = Path(out) / unit
     if unit == "utilisation":
         return utilisation.run_unit(folder, note)
-    if unit == "fatigue":
+    if unit == "fatigue" or unit in OBLIQUE:
         t0 = time.perf_counter()
-        res = fatigue_scatter.run_scatter(resolve(FATIGUE_SCENE), FATIGUE_ELEMENT_LENGTH)
+        scene = resolve(FATIGUE_SCENE) if unit == "fatigue" else oblique_scene(unit)
+        res = fatigue_scatter.run_scatter(scene, FATIGUE_ELEMENT_LENGTH)
         head = fatigue_report.write(res, folder, note, time.perf_counter() - t0)
         agr = head["ancf"]
-        return (f"design/fatigue: touchdown damage/yr rainflow (VFIFE) "
+        return (f"design/{unit}: touchdown damage/yr rainflow (VFIFE) "
                 f"{head['touchdown_rainflow']:.3g}, (ANCF) x{agr['total']['ratio']:.3f} "
                 f"(worst x{agr['worst_ratio']:.3f}: {agr['verdict']}), "
                 f"Dirlik (FD) {head['touchdown_dirlik']:.3g}"
@@ -86,4 +100,5 @@ def ancf_ratios(ss: pd.DataFrame) -> tuple[float, bool]:
 #: and the FD, and the ANCF's three sea states, about 500 s of CPU each (measured: 1403 s
 #: of wall for Hs 1.5 m on the 2-core machine shared at about a third of a core)
 STUDY = Study("design", UNITS, run_unit, index_row,
-              seconds={"utilisation": 15, "fatigue": 1750})
+              seconds={"utilisation": 15, "fatigue": 1750, "fatigue-45": 1750,
+                       "fatigue-90": 1750})

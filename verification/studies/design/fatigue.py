@@ -222,11 +222,11 @@ def require_fatigue(scene) -> None:
         raise SceneError(scene.source, "seabed", "required: the fatigue by two methods "
                          "reports the touchdown zone and the hang-off (a line without a "
                          "[seabed] has no touchdown)")
-    oop = scene.out_of_plane()
+    oop = scene.out_of_plane(statics=True)
     if oop is not None:
         raise SceneError(scene.source, oop[0], f"the fatigue by two methods takes a planar "
-                         f"scene (the frequency domain's sea response carries the in-plane "
-                         f"moment only): {oop[1]}")
+                         f"static state (the frequency domain's sea response is about a "
+                         f"planar one; a sea from any heading is taken): {oop[1]}")
 
 
 def sea_state_scene(scene, cell):
@@ -237,8 +237,10 @@ def sea_state_scene(scene, cell):
 
 def fd_amplitudes(cmp, s) -> tuple:
     """The FD's complex amplitudes (n_w, n) at stations ``s`` [m] of the effective tension,
-    the in-plane moment and the vertical displacement per component (transfer times the
-    component's complex amplitude a e^{-i eps}), interpolated linearly from its grid."""
+    the in-plane moment, the out-of-plane moment (a sea off the line's plane bends it
+    across: the frequency domain's out-of-plane family) and the vertical displacement per
+    component (transfer times the component's complex amplitude a e^{-i eps}),
+    interpolated linearly from its grid; and the components' omega [rad/s]."""
     fd, scene = cmp.fd, cmp.matched
     comp = scene_components(scene)
     a = comp.amplitude * np.exp(-1j * comp.phase)
@@ -248,7 +250,7 @@ def fd_amplitudes(cmp, s) -> tuple:
         re = np.array([np.interp(s, fd.s, row.real) for row in h])
         im = np.array([np.interp(s, fd.s, row.imag) for row in h])
         return (re + 1j * im) * a[:, None]
-    return at("tension"), at("moment"), at("dy"), comp.omega
+    return at("tension"), at("moment"), at("moment_out"), at("dy"), comp.omega
 
 
 def fd_record_damage(scene, s, q_sigma, omega, start: float, record: float) -> np.ndarray:
@@ -315,8 +317,8 @@ def spectral_rates(matched, fd, s) -> dict:
     """The FD's spectral estimates (``dirlik_fd``, ``narrow_band_fd``: damage rates
     [1/s]) at stations ``s`` [m] from its sea response ``fd`` about the static state of
     ``matched`` (they do not depend on the realisation's phases)."""
-    h_t, h_m, h_dy, omega = fd_amplitudes(SimpleNamespace(fd=fd, matched=matched), s)
-    q = stress_transfer(matched, s, h_t, h_m, np.zeros_like(h_m), h_dy)
+    h_t, h_m, h_mo, h_dy, omega = fd_amplitudes(SimpleNamespace(fd=fd, matched=matched), s)
+    q = stress_transfer(matched, s, h_t, h_m, h_mo, h_dy)
     spec = spectral(matched, s, omega, fd.d_omega, q)
     return {"dirlik_fd": spec["fatigue_rate_dirlik"],
             "narrow_band_fd": spec["fatigue_rate_narrow_band"]}
@@ -331,8 +333,8 @@ def record_rates(cmp) -> tuple[np.ndarray, dict, float]:
     env = res.dynamics.envelope
     s = np.asarray(env["s"], float)
     record = float(res.info["dynamic_fatigue_record_s"])
-    h_t, h_m, h_dy, omega = fd_amplitudes(cmp, s)
-    q = stress_transfer(cmp.matched, s, h_t, h_m, np.zeros_like(h_m), h_dy)
+    h_t, h_m, h_mo, h_dy, omega = fd_amplitudes(cmp, s)
+    q = stress_transfer(cmp.matched, s, h_t, h_m, h_mo, h_dy)
     start = cmp.ramp_s + cmp.settle_s
     rates = {"rainflow_vfife": np.asarray(env["fatigue_damage"]) / record,
              "rainflow_fd": fd_record_damage(cmp.matched, s, q, omega, start,

@@ -351,6 +351,8 @@ def _report(result, ss: pd.DataFrame, tab: pd.DataFrame, path: Path, note: str,
         f"thickness correction; VFIFE at {result.element_length:g} m elements. Each sea state "
         f"of the scatter diagram is the scene's {_KIND.get(sp.kind, sp.kind)} spectrum at "
         f"its Hs and Tp ({sp.components} components, "
+        + (f"heading {sp.heading_deg:g} deg from the line's plane, "
+           if sp.heading_deg % 360.0 else "")
         + (f"seed {sp.seed}" if not any(st.seeds for st in result.states) else
            f"each cell's realisations their own seeds, from the scene's seed {sp.seed}, the "
            "cell's Hs and Tp") + "); the VFIFE runs a "
