@@ -187,16 +187,20 @@ def sea_state(spectrum_keys: str = "") -> str:
             "tp = 9.0\nprobability = 1.0\n")
 
 
-def test_fatigue_by_two_methods_refuses_a_3d_sea():
-    # the FD's sea response carries the in-plane moment only: an oblique sea is refused
-    # before solving, never counted without its out-of-plane bending
+def test_fatigue_by_two_methods_takes_an_oblique_sea_but_not_a_3d_static_state():
+    # a sea from any heading about a planar static state is taken (the FD's sea response
+    # carries the out-of-plane moment, tests/test_fatigue_headings.py); a current across
+    # the plane (a 3D static state: the sea response is about a planar one) is refused
+    # before solving, naming the current
     from riser.errors import SceneError
     from verification.studies.design.fatigue import require_fatigue
     sea = sea_state("heading_deg = 30.0\n")
-    sc = parse_scene(LINE + FATIGUE + sea)
+    require_fatigue(parse_scene(LINE + FATIGUE + sea))
+    current = ("\n[environment.current]\nheights = [0.0, 60.0]\nspeeds = [0.5, 0.5]\n"
+               "heading_deg = 90.0\n")
     with pytest.raises(SceneError) as exc:
-        require_fatigue(sc)
-    assert exc.value.key.startswith("environment.waves")
+        require_fatigue(parse_scene(LINE + FATIGUE + sea + current))
+    assert exc.value.key.startswith("environment.current"), exc.value
 
 
 def test_harmonic_cycle_utilisation_by_hand():

@@ -129,11 +129,11 @@ def test_transfer_sweep_is_per_unit_motion(scene):
 
 
 @pytest.mark.parametrize("change, key", [
-    ({"environment.current": Current(heights=(0.0, 220.0), speeds=(0.5, 0.5),
-                                     heading_deg=90.0)}, "heading_deg"),
     ({"model": {"seabed": "rigid"}}, "model.seabed"),
 ])
 def test_frequency_domain_refuses_what_it_does_not_model(change, key):
+    # (a current across the plane, a 3D static state, is solved about the 3D rod's state:
+    # tests/test_frequency_3d.py)
     r = solve_harmonic(_scene().replace(**change), PERIOD)
     assert r.status == Status.REFUSED and key in r.message
 

@@ -54,7 +54,11 @@ classical Lorentz-Borgman value). Never a finite difference of |v| v at v = 0.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
+
+from riser.model.sections import segment_properties
 
 #: phases of the cycle average (trapezoidal on a periodic integrand; the averaged
 #: products are |cos|^3-like, smooth enough that 128 phases agree with 4096 to ~1e-6 and
@@ -159,3 +163,28 @@ def relative_velocity(Y: np.ndarray, Z: np.ndarray, omega: float, f: dict,
     if flow is not None:
         a_n, a_z, a_t = a_n + flow["un"], a_z + flow["uz"], a_t + flow["ut"]
     return a_n, a_z, a_t
+
+
+def contact_dashpot(scene, piece) -> float:
+    """The seabed's contact damping c_sb = 2 zeta sqrt(k (m + m_a)) [N s/m2] of ``piece``
+    (a :class:`bvp.modal.equations.Piece`: its k, m, m_a) where the static line lies in
+    the seabed, 0 elsewhere; zeta the scene's contact damping ratio as the VFIFE applies
+    it: at most critical (more only slows the contact down;
+    riser.physics.environment.Seabed.damping)."""
+    sb = scene.seabed
+    zeta = min(sb.damping, 1.0) if sb is not None else 0.0
+    if piece.contact and zeta > 0.0:
+        return 2.0 * zeta * math.sqrt(piece.k * (piece.m + piece.ma))
+    return 0.0
+
+
+def damping_times(scene, pieces, s: np.ndarray, which: np.ndarray) -> np.ndarray:
+    """BA / EA [s] at the points s (on ``pieces[which]``): the line types' internal axial
+    damping over their axial stiffness (0 where the line is inextensible), the time
+    constant of the complex axial stiffness EA + i omega BA (:func:`in_plane`)."""
+    props = segment_properties(scene)
+    ends = np.array([p.s_end for p in props])
+    seg = np.clip(np.searchsorted(ends, s), 0, len(props) - 1)
+    ba = np.array([p.BA for p in props])[seg]
+    inv_ea = np.array([pc.inv_EA for pc in pieces])[which]
+    return ba * inv_ea

@@ -25,6 +25,12 @@ inertia, the inhomogeneous term of :func:`bvp.frequency.equations.wave_forcing`.
 below the static line's highest point is refused. An irregular sea:
 :mod:`bvp.frequency.sea_response`.
 
+A 3D static state (the BVP's rod, ``SolveResult.solver_state`` a
+:class:`bvp.rod.output.RodState`: a scene whose current or hang-off leaves the ends'
+plane, or a planar scene solved with ``three_d=True``) is linearised as the rod, in- and
+out-of-plane motion coupled in one family of ten states, with the same damping, drag
+linearisation, waves, ends, grid and fixed point (:mod:`bvp.frequency.rod_harmonic`).
+
 Method: the box scheme (midpoint rule, second order) on a grid with nodes at every
 piece end, refined geometrically towards them down to an eighth of the bending length
 sqrt(EI/T); one sparse complex LU per family per iteration. The drag coefficients depend
@@ -49,17 +55,22 @@ from riser.physics.hang_off_motion import motion_amplitudes
 from riser.results.response import HarmonicResponse
 from riser.results.result import SolveResult, Status
 from riser.model.scene import Scene
-from riser.model.sections import segment_properties
 
 from . import equations as he
+from . import rod_harmonic as rh
 from . import wave_loads as wl
 from ..modal.equations import (FAMILIES, Piece, box_matrix, build_pieces,
                               require_linearisable, state_scales)
+from ..modal.rod_family import rod_pieces
+from ..rod.output import RodState
 
 #: under-relaxation of the drag coefficients' fixed point
 RELAXATION = 0.5
 #: default grid intervals over the line (before the end refinement)
 INTERVALS = 6000
+#: a response quantity whose peak is below this fraction of its scale is zero at first
+#: order (round-off; :func:`_richardson`'s grid change leaves it out)
+FIRST_ORDER_ZERO = 1e-9
 
 
 def solve_harmonic(scene: Scene, period: float | None = None, motion=None, *,
@@ -73,7 +84,10 @@ def solve_harmonic(scene: Scene, period: float | None = None, motion=None, *,
     ``[dynamics.top_motion]`` (its period when ``period`` is None). A given ``motion`` is
     the hang-off's alone (the scene's waves are not applied). A scene the model does not
     represent gives a ``refused`` result; a drag linearisation that does not settle in
-    ``max_iterations`` a ``not_converged`` one with the count and the last change."""
+    ``max_iterations`` a ``not_converged`` one with the count and the last change.
+    ``static``: the BVP's static result to linearise about (solved here when None; the
+    rod's, a 3D state, for a scene whose static state is 3D, ValueError otherwise): the
+    rod's state is linearised as the rod (:mod:`bvp.frequency.rod_harmonic`)."""
     t0 = time.perf_counter()
     name = scene.name
     try:
@@ -101,15 +115,27 @@ def solve_harmonic(scene: Scene, period: float | None = None, motion=None, *,
             return HarmonicResponse("bvp", name, Status.REFUSED, str(exc), period, motion)
         if scene.waves.line_loads:
             forcing = wl.LineFlow(scene, static.profile, wave, 0)
-    pieces = build_pieces(scene, static.profile)
+    state = static.solver_state
+    if scene.out_of_plane(statics=True) is not None and not isinstance(state, RodState):
+        raise ValueError("static must be the bvp's 3D rod result of the scene")
+    if isinstance(state, RodState):      # the 3D rod's state: the coupled family
+        pieces = rod_pieces(scene, static.profile, state)
+
+        def on_grid(s, start=None):
+            return rh.solve_on_grid(scene, state, pieces, period, motion, tolerance,
+                                    max_iterations, s, start=start, forcing=forcing)
+    else:
+        pieces = build_pieces(scene, static.profile)
+
+        def on_grid(s, start=None):
+            return _solve(scene, pieces, period, motion, tolerance, max_iterations, s,
+                          start=start, forcing=forcing)
     coarse_s = grid(pieces, intervals // 2)
-    coarse = _solve(scene, pieces, period, motion, tolerance, max_iterations, coarse_s,
-                    forcing=forcing)
+    coarse = on_grid(coarse_s)
     out = coarse
     if coarse.converged and check_grid:
         fine_s = np.sort(np.concatenate([coarse_s, 0.5 * (coarse_s[1:] + coarse_s[:-1])]))
-        fine = _solve(scene, pieces, period, motion, tolerance, max_iterations, fine_s,
-                      start=coarse.info.pop("coefficients"), forcing=forcing)
+        fine = on_grid(fine_s, start=coarse.info.pop("coefficients"))
         out = fine if not fine.converged else _richardson(fine, coarse)
     out.info.pop("coefficients", None)
     if wave is not None:
@@ -141,21 +167,27 @@ def transfer_sweep(scene: Scene, periods, axis: str, *, static: SolveResult | No
     return out
 
 
-def require_wave(scene: Scene) -> None:
+def require_wave(scene: Scene, three_d: bool = True) -> None:
     """Refuse, before solving (UnsupportedSceneError), a regular-wave scene the frequency
     domain does not represent: the checks of :func:`solve_harmonic` that need no static
-    state (the drive, :func:`require_harmonic`, a trough below the line's highest end)."""
+    state (the drive, :func:`require_harmonic` with ``three_d``, a trough below the line's
+    highest end)."""
     _, motion, wave = wl.drive(scene, None, None)
-    require_harmonic(scene, motion)
+    require_harmonic(scene, motion, three_d)
     if wave is not None:
         ends = max(scene.ends.anchor_point[1], scene.ends.hang_off_point[1])
         wl.require_submerged(scene, wave, ends, "the line's highest end")
 
 
-def require_harmonic(scene: Scene, motion: np.ndarray) -> None:
-    """Refuse what the frequency-domain model does not represent (before solving)."""
+def require_harmonic(scene: Scene, motion: np.ndarray, three_d: bool = True,
+                     who: str = "the frequency domain") -> None:
+    """Refuse what the frequency-domain model does not represent (before solving);
+    ``three_d``: a 3D static state is linearised (the rod's, :mod:`bvp.frequency.
+    rod_harmonic`: the harmonic response), else refused (False: the irregular sea's
+    planar model, :mod:`bvp.frequency.sea_response`); ``who`` names the analysis in the
+    messages."""
     src = scene.source
-    require_linearisable(scene, "the frequency domain")
+    require_linearisable(scene, who, three_d=three_d)
     if not scene.ends.plain:
         raise UnsupportedSceneError(
             f"{src}: ends: the frequency domain holds both ends pinned in place; a joint, "
@@ -205,17 +237,12 @@ def _fields(scene: Scene, pieces: list[Piece], s: np.ndarray, which: np.ndarray)
     theta, y = np.empty(s.size), np.empty(s.size)
     c_n, c_t = np.empty(s.size), np.empty(s.size)
     csb = np.zeros(s.size)
-    sb = scene.seabed
-    # the contact damping ratio as the VFIFE applies it: at most critical (more only slows
-    # the contact down; riser.physics.environment.Seabed.damping)
-    zeta = min(sb.damping, 1.0) if sb is not None else 0.0
     for i, pc in enumerate(pieces):
         sel = which == i
         st = pc.static(s[sel])
         theta[sel], y[sel] = st["theta"], st["y"]
         c_n[sel], c_t[sel] = pc.c_n, pc.c_t
-        if pc.contact and zeta > 0.0:
-            csb[sel] = 2.0 * zeta * math.sqrt(pc.k * (pc.m + pc.ma))
+        csb[sel] = he.contact_dashpot(scene, pc)
     cur = scene.current
     if cur is not None:
         V, Vp = cur.velocity(y)[0], cur.velocity_gradient(y)[0]     # in plane: x
@@ -224,20 +251,7 @@ def _fields(scene: Scene, pieces: list[Piece], s: np.ndarray, which: np.ndarray)
     vn0, vt0 = -V * np.sin(theta), V * np.cos(theta)
     return {"theta": theta, "y": y, "V": V, "Vp": Vp, "c_n": c_n, "c_t": c_t, "csb": csb,
             "vn0": vn0, "vt0": vt0, "ft0": c_t * np.abs(vt0) * vt0,
-            "ba_ea": _damping_times(scene, pieces, s, which)}
-
-
-def _damping_times(scene: Scene, pieces: list[Piece], s: np.ndarray,
-                   which: np.ndarray) -> np.ndarray:
-    """BA / EA [s] at the points s: the line types' internal axial damping over their
-    axial stiffness (0 where the line is inextensible), the time constant of the complex
-    axial stiffness EA + i omega BA (:func:`bvp.frequency.equations.in_plane`)."""
-    props = segment_properties(scene)
-    ends = np.array([p.s_end for p in props])
-    seg = np.clip(np.searchsorted(ends, s), 0, len(props) - 1)
-    ba = np.array([p.BA for p in props])[seg]
-    inv_ea = np.array([pc.inv_EA for pc in pieces])[which]
-    return ba * inv_ea
+            "ba_ea": he.damping_times(scene, pieces, s, which)}
 
 
 @dataclass
@@ -410,14 +424,21 @@ def _richardson(fine: HarmonicResponse, coarse: HarmonicResponse) -> HarmonicRes
     coarse nodes: R = F + (F - C) / 3 (every node of the coarse grid is a fine one).
     ``info['grid_change']``: the largest |F - C| of the tension and moment amplitudes
     over their peaks (the fine grid's own error is about a third of it, the
-    extrapolation's far less)."""
+    extrapolation's far less), of those not zero at first order (a peak above
+    :data:`FIRST_ORDER_ZERO` of the static tension's largest, a moment's of the larger
+    moment's peak: the 3D rod's in-plane response to a sway at a planar state is
+    round-off, ~1e-20, the planar families' exactly 0)."""
     change = 0.0
     amps = {}
+    peaks = {k: float(np.max(np.abs(F[::2]))) for k, F in fine.amplitudes.items()}
+    floor = {"tension": FIRST_ORDER_ZERO * float(np.max(np.abs(fine.static["tension"])))}
+    floor["moment"] = floor["moment_out"] = FIRST_ORDER_ZERO * max(
+        peaks.get("moment", 0.0), peaks.get("moment_out", 0.0))
     for k, F in fine.amplitudes.items():
         Fc, C = F[::2], coarse.amplitudes[k]
         amps[k] = Fc + (Fc - C) / 3.0
-        peak = float(np.max(np.abs(Fc)))
-        if k in ("tension", "moment", "moment_out") and peak > 0.0:
+        peak = peaks[k]
+        if k in ("tension", "moment", "moment_out") and peak > floor[k]:
             change = max(change, float(np.max(np.abs(Fc - C))) / peak)
     info = dict(fine.info, grid_change=change, grid_nodes=int(coarse.s.size),
                 extrapolated="Richardson, grids of %d and %d nodes" % (coarse.s.size,

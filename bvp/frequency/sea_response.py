@@ -226,7 +226,8 @@ def _require_sea(scene: Scene):
     if scene.dynamics is not None and scene.dynamics.top_motion is not None:
         raise UnsupportedSceneError(f"{src}: dynamics.top_motion: not beside a sea in the "
                                     "sea response (the vessel moves the hang-off)")
-    require_harmonic(scene, np.zeros(3, complex))
+    require_harmonic(scene, np.zeros(3, complex), three_d=False,
+                     who="the sea response (bvp.frequency.sea_response)")
     comp = scene_components(scene)
     top = max(scene.ends.anchor_point[1], scene.ends.hang_off_point[1])
     wl.require_submerged(scene, comp, top, "the line's highest end")

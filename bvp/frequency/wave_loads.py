@@ -139,6 +139,26 @@ class LineFlow:
                 "an": -sn * acc[0] + c * acc[1], "at": c * acc[0] + sn * acc[1],
                 "az": acc[2], "inertia": self.inertia(s), "inertia_t": self.inertia(s, 3)}
 
+    def at_frame(self, s: np.ndarray, y: np.ndarray, frame, plane) -> dict:
+        """The flow's complex amplitudes on a 3D static line (:mod:`bvp.frequency.
+        rod_harmonic`) at arc lengths s [m] and heights y [m]: the velocity's components
+        ``ut``, ``u1``, ``u2`` [m/s] and the acceleration's ``at``, ``a1``, ``a2`` [m/s2]
+        along the rod's frame ``frame`` = (t, n1, n2), each (3, m) in the axes of
+        ``plane`` (riser.model.frame.LinePlane: x along the plane, y up, z across it; the
+        kinematics, in the scene's axes, are turned into them by the plane's
+        ``vector_to_plane``), and the inertia coefficients ``inertia`` (normal) and
+        ``inertia_t`` (tangential) [kg/m]. At a planar state (n2 = e_z, the plane the x-y
+        plane) u1, u2, ut are :meth:`at`'s un, uz, ut."""
+        x, z = self.points(s)
+        u, acc = kinematics(self.comp, self.j, x, y, z)
+        out = {"inertia": self.inertia(s), "inertia_t": self.inertia(s, 3)}
+        for name, v in (("u", u), ("a", acc)):
+            along, across = plane.vector_to_plane(v[0], v[2])
+            w = (along, v[1], across)
+            for key, e in zip(("t", "1", "2"), frame):
+                out[name + key] = e[0] * w[0] + e[1] * w[1] + e[2] * w[2]
+        return out
+
 
 # ------------------------------------------------------------------ the scene's waves
 def trough(comp: WaveComponents) -> float:

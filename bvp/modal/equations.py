@@ -185,8 +185,8 @@ def require_linearisable(scene: Scene, who: str, three_d: bool = False) -> None:
     if why is not None and not three_d:
         raise UnsupportedSceneError(
             f"{src}: {why[0]}: {why[1]}: the static state is not planar, {who} "
-            "linearise(s) about a planar one (a 3D static state has no modal analysis "
-            "or frequency domain here; the VFIFE's time domain solves it)")
+            "linearise(s) about a planar one (the coupled modes and the harmonic "
+            "response linearise a 3D static state; the VFIFE's time domain solves it)")
     if scene.seabed_model == "rigid":
         raise UnsupportedSceneError(
             f"{src}: model.seabed: 'rigid' has no linear stiffness (a touchdown point); "

@@ -18,7 +18,7 @@ from riser.errors import SolveFailed
 from verification.methods import method
 
 from .rows import DRIFT_LIMIT
-from .vfife_side import MAX_SETTLE_PERIODS, SETTLE_PERIODS, read_vfife
+from .vfife_side import MAX_SETTLE_PERIODS, SETTLE_PERIODS, read_vfife, static_plane
 
 
 def settled_run(scene_for, period: float, ramp: int, axis: str, what: str,
@@ -36,7 +36,8 @@ def settled_run(scene_for, period: float, ramp: int, axis: str, what: str,
         wall += time.perf_counter() - t0
         if not res.converged:
             raise SolveFailed("ancf", res.status, f"ancf at {what}: {res.message}")
-        an = read_vfife(res.dynamics.states, period, vs.dynamics.statistics_from, axis)
+        an = read_vfife(res.dynamics.states, period, vs.dynamics.statistics_from, axis,
+                        static_plane(vs))
         if an["drift"] <= DRIFT_LIMIT or 2 * settle > MAX_SETTLE_PERIODS:
             break
         settle *= 2

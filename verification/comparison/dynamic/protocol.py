@@ -27,6 +27,14 @@ the difference is reported, not judged); the minimum tension over the cycle. Sta
 (hang-off, touchdown, sag bends, crests): amplitude and phase of the tension, reported.
 A response whose FD minimum tension goes below zero is slack over the cycle: outside the
 linear model, named ``slack_over_cycle``, rows not judged.
+
+A 3D static state (a current or a hang-off out of the ends' plane): the FD linearises the
+BVP's 3D rod (:mod:`bvp.frequency.rod_harmonic`), and the moments of both sides are the 3D
+profile's columns in and out of the ends' plane (riser.model.frame.plane_columns), read
+off the time domains sample by sample (:func:`.vfife_side.moment_columns`); the rows and
+their tolerances are the planar protocol's (measured on scr-steel-current-90, heave and
+sway of 0.1 m at 14 s with 1 m elements: every judged row within them, the VFIFE's and
+the ANCF's).
 """
 
 from __future__ import annotations

@@ -164,10 +164,15 @@ def markdown(dc: DynamicComparison, static_markdown: str = "", peer_markdown: st
     else:
         drive = (f"- Motion: d(t) = A sin(2 pi t / T) along {dc.axis}, T = {dc.period:g} s, "
                  f"A = {amps} m.")
+    three_d = not dc.matched.statics_planar
     lines += [drive,
               "- Frequency domain (`bvp/frequency/harmonic.py`): linearised about the BVP static "
               "state, drag by equal work per cycle (iterated), touchdown fixed at the static "
-              "one, the line wholly in the water.",
+              "one, the line wholly in the water."
+              + (" The static state is 3D: the rod linearised, in- and out-of-plane motion "
+                 "coupled (`bvp/frequency/rod_harmonic.py`); the moments are the 3D "
+                 "profile's columns in and out of the ends' plane, read off the time "
+                 "domains sample by sample." if three_d else ""),
               f"- VFIFE: {dc.element_length:g} m elements, a ramp of "
               f"{dc.results[0].vf.get('ramp_periods', RAMP_PERIODS)} periods, "
               f"{SETTLE_PERIODS} periods to settle (doubled while the window's halves "

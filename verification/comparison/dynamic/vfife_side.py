@@ -18,6 +18,7 @@ import time
 import numpy as np
 
 from riser.errors import SolveFailed
+from riser.model.frame import LinePlane, plane_columns
 from riser.results.result import Status
 from verification.methods import design_observers, method
 from vfife.dynamics.run import DynamicsOutcome, run_dynamics
@@ -52,7 +53,7 @@ def settled_run(scene_for, period: float, ramp: int, axis: str, h: float, what: 
         raise SolveFailed("vfife", v.status, f"vfife at {what}: {v.message}")
     states, ck = v.dynamics.states, v.dynamics.checkpoint
     utilisation = v.summary().get("dynamic_max_utilisation")      # with [design]
-    vf = read_vfife(states, period, vs.dynamics.statistics_from, axis)
+    vf = read_vfife(states, period, vs.dynamics.statistics_from, axis, static_plane(vs))
     while vf["drift"] > DRIFT_LIMIT and 2 * settle <= MAX_SETTLE_PERIODS and ck is not None:
         settle *= 2
         vs = scene_for(settle)
@@ -66,11 +67,18 @@ def settled_run(scene_for, period: float, ramp: int, axis: str, h: float, what: 
                               f"{dinfo['message']}")
         states, ck = continued(states, dinfo["states"], ck.t), dinfo["checkpoint"]
         utilisation = dinfo["statistics"].get("dynamic_max_utilisation")
-        vf = read_vfife(states, period, vs.dynamics.statistics_from, axis)
+        vf = read_vfife(states, period, vs.dynamics.statistics_from, axis, static_plane(vs))
     vf.update({"settle_periods": settle, "ramp_periods": ramp,
                "max_utilisation": utilisation,
                "static_s": v.profile.s, "static_y": v.profile.y})
     return vf, wall
+
+
+def static_plane(scene) -> LinePlane | None:
+    """The ends' plane of a scene whose static state is 3D (its moments are read as the 3D
+    profile's columns, :func:`moment_columns`), None for a planar static state (read as
+    before: about z and the static in-plane normal)."""
+    return None if scene.statics_planar else LinePlane.of(scene)
 
 
 def continued(before: dict, after: dict, t: float) -> dict:
@@ -81,11 +89,14 @@ def continued(before: dict, after: dict, t: float) -> dict:
             for k, v in after.items()}
 
 
-def read_vfife(states: dict, period: float, start: float, axis: str = "y") -> dict:
+def read_vfife(states: dict, period: float, start: float, axis: str = "y",
+               plane: LinePlane | None = None) -> dict:
     """First harmonics of the VFIFE's ``states`` (``DynamicsResult.states``, from t = 0)
     over the window from ``start`` [s]: per
     quantity (tension, moment: in-plane, about z; moment_out: about the static in-plane
-    normal; dx, dy, dz) a :class:`..harmonics.Harmonics`; ``s``; the window's minimum
+    normal; dx, dy, dz) a :class:`..harmonics.Harmonics`; about a 3D static state
+    (``plane``: the ends' plane, :func:`moment_columns`) the moments are the 3D profile's
+    columns instead, sample by sample; ``s``; the window's minimum
     tension; ``drift``: the largest change of the tension amplitude (of the out-of-plane
     displacement for a motion along z, whose tension changes at second order only)
     between the window's two halves over its peak (the transient still decaying; the
@@ -98,8 +109,11 @@ def read_vfife(states: dict, period: float, start: float, axis: str = "y") -> di
     tang /= np.linalg.norm(tang, axis=1)[:, None]
     normal = np.stack([-tang[:, 1], tang[:, 0], np.zeros_like(s)], axis=1)
     mv = st["moment_vector"]
-    series = {"tension": st["tension"].T, "moment": mv[:, :, 2].T,
-              "moment_out": np.einsum("kni,ni->nk", mv, normal),
+    if plane is None:
+        moment, moment_out = mv[:, :, 2].T, np.einsum("kni,ni->nk", mv, normal)
+    else:
+        moment, moment_out = moment_columns(x, s, mv, plane)
+    series = {"tension": st["tension"].T, "moment": moment, "moment_out": moment_out,
               "dx": x[:, :, 0].T, "dy": x[:, :, 1].T, "dz": x[:, :, 2].T}
     out = {k: harmonics.fit(t, q, period, start) for k, q in series.items()}
     sel = t >= start - 1e-9
@@ -116,3 +130,22 @@ def read_vfife(states: dict, period: float, start: float, axis: str = "y") -> di
             drift = max(drift, float(np.max(np.abs(a - b))) / peak)
     out["drift"], out["axis"] = drift, axis
     return out
+
+
+def moment_columns(x: np.ndarray, s: np.ndarray, mv: np.ndarray, plane: LinePlane):
+    """((n, k), (n, k)) [N m]: the bending moment's in-plane and out-of-plane columns of a
+    3D profile (riser.model.frame.plane_columns: m . (b x t) and m . b, b = unit(t x e_n)
+    of the ends' ``plane``) at every sample of the positions x (k, n, 3) [m] at arc
+    lengths s (n,) [m], the tangent t the positions' derivative along s normalised, and
+    the line's moment m = EI t x t' minus the recorded nodal moment vector mv (k, n, 3)
+    (riser/results/recorder.py). The frame turns with the line, as the frequency
+    domain's dM1, dM2 about a 3D static state do (bvp.frequency.rod_harmonic): a
+    projection on the static frame would miss M2 sin(phi) dtheta and M1 sin(phi) dtheta,
+    first order where the static state is tilted and bent."""
+    tang = np.gradient(x, s, axis=1)
+    tang /= np.linalg.norm(tang, axis=2)[:, :, None]
+    k, n = x.shape[0], x.shape[1]
+    flat = (-mv).reshape(k * n, 3)
+    _, inplane, out = plane_columns(plane, x[:, :, 0].ravel(), x[:, :, 2].ravel(),
+                                    tang.reshape(k * n, 3), flat)
+    return inplane.reshape(k, n).T, out.reshape(k, n).T
