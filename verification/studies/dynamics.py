@@ -16,6 +16,10 @@ domain has the line wholly in the water, and the VFIFE would otherwise lift the 
 the line into the air at every heave crest, a first-order change of the hang-off tension
 that is not a discretisation difference.
 
+About a 3D static state (:data:`THREE_D`, issue 50): heave and sway at one period between
+two coupled natural periods, both at the scene's element length and judged, the ANCF's
+time domain beside.
+
 Files per scene: ``cases.csv`` (one row per case and amplitude: the rows of the dynamic
 comparison and the FD and VFIFE times), ``convergence.csv`` (element_length_m and the
 same differences), ``report.md``, the static comparison's files and one folder per case
@@ -52,7 +56,11 @@ PERIODS = {
     "wang2014-baseline": ((13.5, "14.4 and 12.8 s"), (15.7, "17.2 and 14.4 s")),
     "flexible-jumper": ((9.2, "10.9 and 7.77 s"), (6.9, "7.77 and 6.10 s")),
 }
-SCENES = tuple(PERIODS)
+#: a scene about a 3D static state (issue 50: a current across the line's plane) -> its
+#: period [s] with the coupled natural periods it sits between (``riser-verify modes``):
+#: heave and sway there, both headline cases (the frequency domain about the 3D rod's state)
+THREE_D = {"scr-steel-current-90": (14.0, "16.6 and 13.3 s, coupled modes 6 and 7")}
+SCENES = tuple(PERIODS) + tuple(THREE_D)
 #: the amplitude sweep [m] and the smallest amplitude
 AMPLITUDES = (0.1, 0.3, 1.0, 3.0)
 SMALL = AMPLITUDES[0]
@@ -82,7 +90,11 @@ def study_scene(name: str):
 def cases(name: str) -> list[tuple[str, str, float, tuple, float]]:
     """(case name, axis, period, amplitudes, element-length factor) of one scene: the two
     headline cases (heave and surge at the first period, the smallest amplitude) at the
-    scene's element length, the rest at :data:`COARSE` times it (their cost)."""
+    scene's element length, the rest at :data:`COARSE` times it (their cost); a 3D static
+    state's (:data:`THREE_D`) heave and sway at its period, both headline cases."""
+    if name in THREE_D:
+        t = THREE_D[name][0]
+        return [(f"heave-{t:g}s", "y", t, (SMALL,), 1.0), (f"sway-{t:g}s", "z", t, (SMALL,), 1.0)]
     (t1, _), (t2, _) = PERIODS[name]
     out = [(f"heave-{t1:g}s", "y", t1, (SMALL,), 1.0), (f"surge-{t1:g}s", "x", t1, (SMALL,), 1.0),
            (f"heave-{t2:g}s", "y", t2, (SMALL,), COARSE),
@@ -194,22 +206,32 @@ def _worst(table: pd.DataFrame) -> dict:
 
 
 def _markdown(name, scene, comp, table, conv, note) -> str:
-    (t1, b1), (t2, b2) = PERIODS[name]
     head = _headline(table)
     ratio = (head["vfife_s"] / head["fd_s"]).median()
+    if name in THREE_D:
+        t1, b1 = THREE_D[name]
+        periods = (f"The static state is 3D (the current across the line's plane): the "
+                   f"frequency domain is about the 3D rod's state, its in- and out-of-plane "
+                   f"motions coupled. Period {t1:g} s (between the coupled natural periods "
+                   f"{b1})")
+        judged = ("Judged: both cases (heave and sway at the smallest amplitude, the "
+                  "scene's element length).")
+    else:
+        (t1, b1), (t2, b2) = PERIODS[name]
+        periods = (f"Periods {t1:g} s (between the in-plane natural periods {b1}) and "
+                   f"{t2:g} s (between {b2})")
+        judged = ("Judged: the two headline cases (heave and surge at the first period, the "
+                  "smallest amplitude) at the scene's element length; the others, at twice "
+                  "it, and the sweep's larger amplitudes (the nonlinearity) are reported.")
     lines = [f"# Dynamic response by two methods: `{name}`", "", GENERATED_NOTE, "",
              f"Scene: {scene.title or name} (sea surface {SURFACE_ABOVE:g} m above the "
-             f"hang-off). Periods {t1:g} s (between the in-plane natural periods {b1}) and "
-             f"{t2:g} s (between {b2}). Static comparison: "
+             f"hang-off). {periods}. Static comparison: "
              f"{'PASS' if comp.passed else 'FAIL'} (its files beside this report).", ""]
     if note:
         lines += [note, ""]
     lines += ["## Cases", "", "VFIFE vs frequency domain (FD): relative differences of the "
               "first-harmonic amplitudes (see each case's report for the rows' bases and "
-              "tolerances); phase in degrees. Judged: the two headline cases (heave and "
-              "surge at the first period, the smallest amplitude) at the scene's element "
-              "length; the others, at twice it, and the sweep's larger amplitudes (the "
-              "nonlinearity) are reported.", ""]
+              f"tolerances); phase in degrees. {judged}", ""]
     hdr = ["case", "A [m]", "h [m]", "hang-off T", "phase [deg]", "T along s", "M along s",
            "M out of plane", "displacement", "higher harmonics (T; dz in sway)", "FD [s]",
            "VFIFE [s]",
@@ -329,4 +351,4 @@ def _abs_pct(value) -> str:
 #: measured wall times [s] of the units in ``reproduce all`` (2 processes, 2 cores)
 STUDY = Study("dynamics", SCENES, run_unit, index_row,
               seconds={"scr-steel": 240, "yu2021-a3": 120, "wang2014-baseline": 100,
-                       "flexible-jumper": 60})
+                       "flexible-jumper": 60, "scr-steel-current-90": 420})
