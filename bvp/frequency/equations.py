@@ -60,6 +60,8 @@ import numpy as np
 
 from riser.model.sections import segment_properties
 
+from ..modal.equations import state_scales
+
 #: phases of the cycle average (trapezoidal on a periodic integrand; the averaged
 #: products are |cos|^3-like, smooth enough that 128 phases agree with 4096 to ~1e-6 and
 #: the dissipation with the nonlinear drag's to 2e-9, tests/test_harmonic_closed_forms.py)
@@ -188,3 +190,14 @@ def damping_times(scene, pieces, s: np.ndarray, which: np.ndarray) -> np.ndarray
     ba = np.array([p.BA for p in props])[seg]
     inv_ea = np.array([pc.inv_EA for pc in pieces])[which]
     return ba * inv_ea
+
+
+def response_scales(pieces, fam, omega: float, L: float) -> np.ndarray:
+    """The state scales of a harmonic response at ``omega`` [rad/s] on ``pieces`` of the
+    family ``fam`` over the grid's length ``L`` [m] (:func:`bvp.modal.equations.
+    state_scales` over the wavelength of a taut string at the largest top tension and the
+    largest mass: as many half-waves as fit in the line, at least one)."""
+    wave = 2.0 * math.pi * math.sqrt(max(float(np.max(np.abs(pc.spl["T"](pc.s1))))
+                                         for pc in pieces) / max(pc.m + pc.ma
+                                                                 for pc in pieces)) / omega
+    return state_scales(pieces, fam, max(1, int(2.0 * L / wave)))

@@ -60,7 +60,7 @@ from . import equations as he
 from . import rod_harmonic as rh
 from . import wave_loads as wl
 from ..modal.equations import (FAMILIES, Piece, box_matrix, build_pieces,
-                              require_linearisable, state_scales)
+                              require_linearisable)
 from ..modal.rod_family import rod_pieces
 from ..rod.output import RodState
 
@@ -377,11 +377,7 @@ def _family(setup: Setup, plane: str, omega: float, motion: np.ndarray,
     A, B = setup.ops[plane]
     K = (he.in_plane if plane == "in_plane" else he.out_of_plane)(A, B, omega, setup.c_s,
                                                                   setup.f)
-    L = s[-1] - s[0]
-    wave = 2.0 * math.pi * math.sqrt(max(float(np.max(np.abs(pc.spl["T"](pc.s1))))
-                                         for pc in pieces) / max(pc.m + pc.ma
-                                                                 for pc in pieces)) / omega
-    sc = state_scales(pieces, fam, max(1, int(2.0 * L / wave)))
+    sc = he.response_scales(pieces, fam, omega, s[-1] - s[0])
     K = K * sc[None, None, :] / sc[None, :, None]
     eye = np.eye(n)[None]
     hh = 0.5 * h[:, None, None]

@@ -110,7 +110,7 @@ from riser.results.response import HarmonicResponse
 from riser.results.result import Status
 
 from . import equations as he
-from ..modal.equations import Piece, state_scales
+from ..modal.equations import Piece
 from ..modal.rod_family import (IF1, IF2, IM1, IM2, IPH, IT, ITH, IX, IY, IZ, ROD_FAMILY)
 from ..rod.equations import RodModel
 from ..rod.problem import plane_current
@@ -332,7 +332,7 @@ def respond(setup: RodSetup, omega: float, motion: np.ndarray, C: dict | None,
     coefficients ``C`` (None: the modes' undamped operator, :func:`operator`; no wave
     then) and the wave's flow at the midpoints (or None), by the box scheme of the planar
     frequency domain (the midpoint rule; the states scaled by
-    :func:`bvp.modal.equations.state_scales`)."""
+    :func:`bvp.frequency.equations.response_scales`)."""
     fam, pieces, s, h = ROD_FAMILY, setup.pieces, setup.s, setup.h
     n, N = fam.n, h.size
     b0 = fam.clamped if "bottom" in setup.clamped else fam.pinned
@@ -346,11 +346,7 @@ def respond(setup: RodSetup, omega: float, motion: np.ndarray, C: dict | None,
     if not driven and not loaded:
         return np.zeros((N + 1, n), complex)      # neither moved nor loaded
     K = operator(setup, omega, C)
-    L = s[-1] - s[0]
-    wave = 2.0 * math.pi * math.sqrt(max(float(np.max(np.abs(pc.spl["T"](pc.s1))))
-                                         for pc in pieces) / max(pc.m + pc.ma
-                                                                 for pc in pieces)) / omega
-    sc = state_scales(pieces, fam, max(1, int(2.0 * L / wave)))
+    sc = he.response_scales(pieces, fam, omega, s[-1] - s[0])
     K = K * sc[None, None, :] / sc[None, :, None]
     eye = np.eye(n)[None]
     hh = 0.5 * h[:, None, None]
