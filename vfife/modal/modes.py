@@ -217,23 +217,40 @@ def _planar_modes(scene, count: int, res, static_s: float, report,
                                wall_time_s=time.perf_counter() - t0,
                                info={"static_wall_time_s": static_s})
         negative += int(np.sum(lam < 0.0))
-        for j in range(len(lam)):
-            shape = vec[:, j].reshape(n, NDOF)[:, :3]
-            f = math.sqrt(max(lam[j], 0.0)) / (2.0 * math.pi)
-            modes.append(Mode(plane, j + 1, f, s, normalise_shape(shape)))
+        modes += _modes_of(plane, lam, vec, n, s)
     wall = time.perf_counter() - t0
     msg = (f"{sum(m.plane == PLANES[0] for m in modes)} in-plane and "
            f"{sum(m.plane == PLANES[1] for m in modes)} out-of-plane modes about the static "
            f"state ({n} nodes)")
     if negative:
         msg += f"; {negative} negative eigenvalue(s): the static state is not stable"
-    info = {"static_wall_time_s": static_s, "nodes": n,
+    info = _info(static_s, model, tan, rot_scale, negative, res)
+    return ModalResult("vfife", scene.name, Status.CONVERGED, msg, modes, wall, info)
+
+
+def _modes_of(plane: str, lam: np.ndarray, vec: np.ndarray, n: int,
+              s: np.ndarray) -> list[Mode]:
+    """The modes of eigenpairs (omega^2 ``lam`` (k,) [rad2/s2], ``vec`` (5n, k)) numbered
+    1..k in ``plane``: the frequency [Hz] (0 for a negative eigenvalue) and the nodal
+    translations at the mesh's arc lengths ``s`` [m], ``normalise_shape``d."""
+    out = []
+    for j in range(len(lam)):
+        shape = vec[:, j].reshape(n, NDOF)[:, :3]
+        f = math.sqrt(max(lam[j], 0.0)) / (2.0 * math.pi)
+        out.append(Mode(plane, j + 1, f, s, normalise_shape(shape)))
+    return out
+
+
+def _info(static_s: float, model: Model, tan: Tangent, rot_scale: float, negative: int,
+          res) -> dict:
+    """The figures of a modal analysis of ``model`` (its tangent ``tan``) about the static
+    result ``res`` (``static_s`` [s] its wall time), both paths' keys in their order."""
+    return {"static_wall_time_s": static_s, "nodes": model.mesh.n,
             "element_length": float(np.max(model.l0)),
             "rot_scale": rot_scale, "asymmetry": tan.asymmetry, "coupling": tan.coupling,
             "contact_nodes": tan.info["contact_nodes"], "negative_eigenvalues": negative,
             "added_mass": bool(np.any(model.madd > 0.0)),
             "force_residual": res.info.get("force_residual")}
-    return ModalResult("vfife", scene.name, Status.CONVERGED, msg, modes, wall, info)
 
 
 def _coupled_modes(scene, count: int, res, static_s: float, report,
@@ -260,23 +277,14 @@ def _coupled_modes(scene, count: int, res, static_s: float, report,
                            wall_time_s=time.perf_counter() - t0,
                            info={"static_wall_time_s": static_s})
     negative = int(np.sum(lam < 0.0))
-    modes = []
-    for j in range(len(lam)):
-        shape = vec[:, j].reshape(n, NDOF)[:, :3]
-        f = math.sqrt(max(lam[j], 0.0)) / (2.0 * math.pi)
-        modes.append(Mode(COUPLED, j + 1, f, s, normalise_shape(shape)))
+    modes = _modes_of(COUPLED, lam, vec, n, s)
     wall = time.perf_counter() - t0
     z, dz = out_of_plane_extent(static_model)
     msg = (f"{len(modes)} coupled modes about the {'3D' if three_d else 'planar'} static "
            f"state ({n} nodes; |z| up to {z:.3g} m)")
     if negative:
         msg += f"; {negative} negative eigenvalue(s): the static state is not stable"
-    info = {"static_wall_time_s": static_s, "nodes": n,
-            "element_length": float(np.max(model.l0)),
-            "rot_scale": rot_scale, "asymmetry": tan.asymmetry, "coupling": tan.coupling,
-            "contact_nodes": tan.info["contact_nodes"], "negative_eigenvalues": negative,
-            "added_mass": bool(np.any(model.madd > 0.0)),
-            "force_residual": res.info.get("force_residual"),
+    info = {**_info(static_s, model, tan, rot_scale, negative, res),
             "static_state": "3d" if three_d else "planar",
             "out_of_plane_z_m": z, "out_of_plane_director_z": dz,
             "out_of_plane_share": [out_of_plane_share(m) for m in modes]}
