@@ -17,7 +17,7 @@ from builders import catenary, scene, small_pipe
 from bvp.modal.equations import FAMILIES, build_pieces
 from bvp.modal.modes import solve_modes
 from bvp.modal.rod_family import (IF1, IF2, IM1, IM2, IPH, IT, ITH, IY, IZ, ROD_FAMILY,
-                                  rod_pieces, rod_rhs)
+                                  rod_pieces, rod_rhs, static_load)
 from bvp.solver import solve
 from riser.results.modes import COUPLED
 from verification.catalog import resolve
@@ -107,8 +107,7 @@ def test_the_static_rod_satisfies_the_equations_linearised():
     for pc in rod_pieces(sc, st.profile, st.solver_state):
         s = np.linspace(pc.s0, pc.s1, 41)[1:-1]
         v = {k: f(s) for k, f in pc.spl.items()}
-        p = -pc.k * v["y"] if pc.contact else pc.k * np.maximum(-v["y"], 0.0)
-        q = np.stack([v["qx"], v["qy"] + p - pc.w, v["qz"]])
+        q = static_load(pc, v)
         f = rod_rhs(v["th"], v["ph"], v["M1"], v["M2"], v["F1"], v["F2"], v["T"], q,
                     pc.EI, pc.inv_EA)
         for key, i in (("y", IY), ("th", ITH), ("ph", IPH), ("M1", IM1), ("M2", IM2),

@@ -73,12 +73,15 @@ class Piece:
             vn, vt = -V * np.sin(out["theta"]), V * np.cos(out["theta"])
             out["f_n"] = self.c_n * np.abs(vn) * vn
             out["f_t"] = self.c_t * np.abs(vt) * vt
-        if self.contact:
-            out["p"] = -self.k * y
-        else:
-            out["p"] = self.k * np.maximum(-y, 0.0)
+        out["p"] = self.reaction(y)
         out["kc"] = self.k if self.contact else 0.0
         return out
+
+    def reaction(self, y: np.ndarray) -> np.ndarray:
+        """The seabed's static reaction [N/m] at heights ``y`` [m]: its linear branch
+        -k y in a contact piece (as the static solve), the unilateral k max(-y, 0)
+        elsewhere."""
+        return -self.k * y if self.contact else self.k * np.maximum(-y, 0.0)
 
 
 @dataclass(frozen=True)

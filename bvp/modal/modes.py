@@ -173,19 +173,19 @@ def solve_modes(scene: Scene, count: int = 10, *, static: SolveResult | None = N
     info["pieces"] = [(round(p.s0, 6), round(p.s1, 6), bool(p.contact)) for p in pieces]
     modes, failures, checks = [], [], []
     done, total = 0, 2 * count
-    for fam, ends, count in families:
+    for fam, ends, wanted in families:
         plane = fam.plane
-        lam, grid, states = box_modes(pieces, fam, ends, count, grid_intervals)
+        lam, grid, states = box_modes(pieces, fam, ends, wanted, grid_intervals)
         if lam.size and lam[0] <= 0.0:
             return result(Status.NOT_CONVERGED, f"{plane}: the static state is not stable "
                           f"(omega^2 = {lam[0]:.3g} rad2/s2 <= 0): no vibration modes")
-        if lam.size < count:
+        if lam.size < wanted:
             return result(Status.NOT_CONVERGED, f"{plane}: the box scheme found only "
-                          f"{lam.size} real modes of the {count} asked")
+                          f"{lam.size} real modes of the {wanted} asked")
         found = []
-        for i in range(count):
+        for i in range(wanted):
             if progress:
-                progress(f"bvp modes: {plane} {i + 1}/{count}", fraction=done / total)
+                progress(f"bvp modes: {plane} {i + 1}/{wanted}", fraction=done / total)
             ok, why, mode, check = _refine(pieces, fam, ends, lam[i], grid, states[i],
                                            i + 1, tolerance, max_nodes)
             done += 1
@@ -197,7 +197,7 @@ def solve_modes(scene: Scene, count: int = 10, *, static: SolveResult | None = N
         failed = len(failures)
         failures.extend(_coincident(found))
         found.sort(key=lambda m: m.frequency_hz)
-        if len(found) == count and len(failures) == failed:
+        if len(found) == wanted and len(failures) == failed:
             found = [Mode(plane, j + 1, m.frequency_hz, m.s, m.shape)
                      for j, m in enumerate(found)]
         if plane == COUPLED:             # back to the scene's axes, and each mode's share

@@ -95,9 +95,7 @@ def static_load(pc: Piece, st: dict) -> np.ndarray:
     """(3, m) [N/m]: the static load at the stations ``st`` of ``pc``: the weight, the
     seabed's reaction (its linear branch in a contact piece, as the static solve) and the
     drag (and dead load) the static state carries."""
-    y = st["y"]
-    p = -pc.k * y if pc.contact else pc.k * np.maximum(-y, 0.0)
-    return np.stack([st["qx"], st["qy"] + p - pc.w, st["qz"]])
+    return np.stack([st["qx"], st["qy"] + pc.reaction(st["y"]) - pc.w, st["qz"]])
 
 
 @dataclass(frozen=True)
