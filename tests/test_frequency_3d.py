@@ -34,6 +34,7 @@ import types
 import numpy as np
 import pytest
 from builders import catenary, line, scene, small_pipe
+from poles import secant_pole
 
 from bvp.frequency import rod_harmonic as rh
 from bvp.frequency.equations import equivalent_coefficients
@@ -377,16 +378,7 @@ def _pole(response, mode):
         assert abs(q.imag) <= 1e-9 * abs(q.real)
         return 1.0 / q.real
 
-    lam0 = mode.omega ** 2
-    a, b = lam0 * (1.0 - 1e-3), lam0 * (1.0 + 1e-3)
-    ga, gb = g(a), g(b)
-    for _ in range(20):
-        c = b - gb * (b - a) / (gb - ga)
-        if abs(c - b) < 1e-13 * lam0:
-            return math.sqrt(c)
-        a, ga = b, gb
-        b, gb = c, g(c)
-    raise AssertionError(f"no pole found near mode {mode.number}")
+    return secant_pole(g, mode.omega, f"mode {mode.number}")
 
 
 def _modes_operator(setup, state):

@@ -27,6 +27,7 @@ import pytest
 from scipy.interpolate import CubicSpline
 
 from builders import line, scene, small_pipe, straight
+from poles import secant_pole
 import bvp
 from bvp.frequency import equations as he
 from bvp.frequency.harmonic import solve_harmonic
@@ -283,18 +284,7 @@ def _pole(sc, st, mode, intervals):
         assert abs(q.imag) <= 1e-9 * abs(q.real)
         return 1.0 / q.real
 
-    lam0 = mode.omega ** 2
-    a, b = lam0 * (1.0 - 1e-3), lam0 * (1.0 + 1e-3)
-    ga, gb = g(a), g(b)
-    for _ in range(20):
-        c = b - gb * (b - a) / (gb - ga)
-        if abs(c - b) < 1e-13 * lam0:
-            break
-        a, ga = b, gb
-        b, gb = c, g(c)
-    else:
-        raise AssertionError(f"no pole found near {mode.plane} mode {mode.number}")
-    return math.sqrt(c)
+    return secant_pole(g, mode.omega, f"{mode.plane} mode {mode.number}")
 
 
 def test_poles_at_the_natural_frequencies(scr_undamped):
