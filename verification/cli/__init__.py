@@ -26,7 +26,8 @@ try:                             # Ctrl-C while the program loads: one line, 130
                                                  end_interrupted, exit_quietly_on_interrupt,
                                                  interrupts_seen, keep_swallowed_interrupts,
                                                  reraise_interrupt)
-    count_interrupts()           # from here on, no Ctrl-C is lost (see main)
+    count_interrupts()           # from here on, no Ctrl-C is lost (see main), nor one
+    keep_swallowed_interrupts()  # that lands in a finaliser or a callback of the imports
 except KeyboardInterrupt:        # (a module of the standard library's imports only)
     print("error: interrupted", file=sys.stderr)
     raise SystemExit(130) from None
