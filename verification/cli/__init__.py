@@ -38,7 +38,7 @@ try:
     from riser.errors import SceneError, SolveFailed, UnsupportedSceneError, one_line
     from verification import peers
 
-    from . import bench, compare, design, solve, studies, sweep
+    from . import bench, compare, design, orcaflex, solve, studies, sweep
     from .common import QUIET_HELP, Parser, err
 except BaseException as exc:     # noqa: BLE001 - a Ctrl-C, also one that Python wrapped:
     # a KeyboardInterrupt in a descriptor's __set_name__ while a class is created (a
@@ -55,7 +55,7 @@ def build_parser() -> argparse.ArgumentParser:
         "Dual-method verification suite for deepwater risers (VFIFE and BVP)."))
     p.add_argument("-q", "--quiet", action="store_true", help=QUIET_HELP)
     sub = p.add_subparsers(dest="command", required=True)
-    for group in (solve, studies, compare, design, bench, sweep):
+    for group in (solve, studies, compare, design, bench, sweep, orcaflex):
         group.add_parsers(sub)
     for name in peers.names():
         add = peers.peer(name).add_commands
