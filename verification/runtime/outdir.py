@@ -73,6 +73,8 @@ DESIGN = tuple(dict.fromkeys(f for files in DESIGN_UNITS.values() for f in files
 #: ``fatigue SCENE``: the fatigue unit's files and its summary.json (the verdict's keys);
 #: its units' records in ``cells/`` are kept (a rerun resumes from them)
 FATIGUE = DESIGN_UNITS["fatigue"] + ("summary.json",)
+#: ``reproduce orcaflex``: public OrcaFlex models, the corpus, the round trip
+ORCAFLEX = ("published.csv", "corpus.csv", "round_trip.csv", "profiles.png", "report.md")
 #: ``reproduce ends``: the end conditions and attachments against their closed forms
 ENDS = ("closed_forms.csv", "report.md", "deflection.png", "chain_modes.png")
 #: ``stress`` and ``reproduce stress``
@@ -114,6 +116,7 @@ STUDY_FILES = {
     "design": DESIGN,
     "ends": ENDS,
     "nonlinear": NONLINEAR,
+    "orcaflex": ORCAFLEX,
     # the static comparison of each scene (without the paper model) beside its cases
     "dynamics": ("cases.csv", "convergence.csv", "report.md") + tuple(
         f for f in COMPARE if not f.startswith("bvp_paper_model/")),

@@ -22,7 +22,7 @@ from .study import Study
 #: study name -> its module, in the order ``reproduce all`` lists them
 STUDY_MODULES = {name: f"verification.studies.{name}" for name in (
     "wang2014", "yu2021", "liu2021", "kang2015", "compare", "cross_current", "stress", "cost",
-    "modes", "dynamics", "sea_states", "design", "ends", "nonlinear")}
+    "modes", "dynamics", "sea_states", "design", "ends", "nonlinear", "orcaflex")}
 #: the study names (``riser-verify reproduce NAME``)
 STUDIES = tuple(STUDY_MODULES)
 def study(name: str) -> Study:

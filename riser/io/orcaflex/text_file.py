@@ -79,10 +79,13 @@ def _yaml():
 
 
 def _loader(yaml):
-    """A safe YAML 1.1 loader that keeps OrcaFlex's mappings in file order and reads a
-    key written twice as an error (OrcaFlex never writes one twice)."""
+    """A safe YAML 1.1 loader (libyaml's when PyYAML has it) that keeps OrcaFlex's mappings
+    in file order and reads a key written twice as an error (OrcaFlex never writes one
+    twice)."""
 
-    class Loader(yaml.SafeLoader):
+    base = getattr(yaml, "CSafeLoader", yaml.SafeLoader)    # libyaml's parser: 10x faster
+
+    class Loader(base):
         pass
 
     def mapping(loader, node):
