@@ -139,6 +139,12 @@ def line_type(model: Model, obj: dict, u: Units, torsion: bool,
         if idia <= 0.0:
             raise ModelError(src, f"{it}.ID", "a homogeneous pipe needs its bore (ID > 0) "
                              "for the wall's area")
+        for key in ("CoatingThickness", "LiningThickness"):
+            v = get(obj, key)
+            if v is not None and (not _is_number(v) or number(v, src, f"{it}.{key}") != 0.0):
+                raise ModelError(src, f"{it}.{key}", f"{v!r}: a coated or lined pipe is not "
+                                 "carried (the scene's wall is one material); give the line "
+                                 "type as General (its OD, mass, EA, EI)")
         notes.append("Homogeneous pipe: density = MaterialDensity, youngs_modulus = E, "
                      "poisson_ratio = PoissonRatio; the scene derives mass, EA and EI from "
                      "the wall as OrcaFlex does")
@@ -147,8 +153,17 @@ def line_type(model: Model, obj: dict, u: Units, torsion: bool,
     else:
         raise ModelError(src, f"{it}.Category", f"{cat!r}: only General and Homogeneous "
                          "pipe line types are read")
-    # hydrodynamics
-    cd = _pair(get(obj, "Cd", default=[1.2, None, 0.008]), src, f"{it}.Cd")
+    # hydrodynamics: Cd and Ca as [normal x, normal y, axial] (a homogeneous pipe writes
+    # them as Cdn, Cdz and Can, Caz)
+    if get(obj, "Cd") is None and get(obj, "Cdn") is not None:
+        obj = {**obj, "Cd": [get(obj, "Cdn"), None, get(obj, "Cdz", default=0.0)]}
+    if get(obj, "Ca") is None and get(obj, "Can") is not None:
+        obj = {**obj, "Ca": [get(obj, "Can"), None, get(obj, "Caz", default=0.0)]}
+    for key in ("Cd", "Ca"):
+        if get(obj, key) is None:
+            raise ModelError(src, f"{it}.{key}", "not given: this import does not know "
+                             "OrcaFlex's default here; give the coefficient")
+    cd = _pair(get(obj, "Cd"), src, f"{it}.Cd")
     dn = number(get(obj, "NormalDragLiftDiameter"), src, f"{it}.NormalDragLiftDiameter",
                 allow_none=True)
     dh = od if dn is None else dn * u.length
@@ -166,7 +181,7 @@ def line_type(model: Model, obj: dict, u: Units, torsion: bool,
     da = number(get(obj, "AxialDragLiftDiameter"), src, f"{it}.AxialDragLiftDiameter",
                 allow_none=True)
     da = od if da is None else da * u.length
-    ca = _pair(get(obj, "Ca", default=[1.0, None, 0.0]), src, f"{it}.Ca")
+    ca = _pair(get(obj, "Ca"), src, f"{it}.Ca")
     can = number(ca[0], src, f"{it}.Ca")
     cay = number(ca[1], src, f"{it}.Ca", allow_none=True) if len(ca) > 1 else None
     if cay is not None and cay != can:

@@ -79,9 +79,30 @@ def import_model(path: str | Path, line: str | None = None, name: str | None = N
     try:
         scene = scene_from_dict(data, f"{path.name} (imported)")
     except SceneError as exc:
-        raise ModelError(str(path), f"Lines[{data['title']}]", f"the imported scene is "
-                         f"refused: {exc.key}: {exc.message}") from None
+        raise ModelError(str(path), _item_of(exc.key, data["title"]), f"the imported scene "
+                         f"is refused: {exc.key}: {exc.message}") from None
     return text, scene, notes
+
+
+#: the scene's tables -> the OrcaFlex items they come from (a refusal of the imported
+#: scene names the item)
+SCENE_ITEMS = {"attachments": "{line}.Attachment", "environment.current":
+               "Environment.RefCurrentDirection", "environment.waves": "Environment.WaveTrains",
+               "environment": "Environment", "seabed": "Environment.SeabedNormalStiffness",
+               "ends": "{line}.Connection", "segments": "{line}.Sections",
+               "vessel": "Vessels", "dynamics": "General.StageDuration"}
+
+
+def _item_of(key: str, line: str) -> str:
+    """The OrcaFlex item a scene key came from (a line type's: ``LineTypes[NAME]``)."""
+    lines = f"Lines[{line}]"
+    if key.startswith("line_types."):
+        name = key[len("line_types."):].split(".")[0].strip('"')
+        return f"LineTypes[{name}]"
+    for prefix, item in SCENE_ITEMS.items():
+        if key == prefix or key.startswith((prefix + ".", prefix + "[")):
+            return item.format(line=lines)
+    return lines
 
 
 def _printable(text: str) -> str:

@@ -226,6 +226,9 @@ def _resolve(obj, here: Path, model: Model, stack: list[Path], item: str):
             out.extend(got if isinstance(got, list) else [got])
         return out
     if isinstance(obj, dict):
+        target = _include_target(obj)
+        if target is not None and item:      # a section written as `NAME: {includefile: F}`
+            return _include(target, here, model, stack, f"{item}.includefile")
         out = {}
         for k, v in obj.items():
             if isinstance(k, str) and k.lower() == "includefile" and len(obj) > 1:
