@@ -29,14 +29,29 @@ def corpus_frame(outcomes) -> pd.DataFrame:
                          for o in outcomes])
 
 
+#: a round trip's difference below this is float round-off (the unit factors' and the
+#: frame's last bits), written as "<1e-12": its digits may differ on another machine
+#: (libm's last bit), and the committed report must not
+ROUND_OFF = 1e-12
+
+
+def _bucket(v) -> str:
+    """A difference as the report keeps it: '' (not compared), '0', '<1e-12', or 3 digits."""
+    if v is None or (isinstance(v, float) and math.isnan(v)):
+        return ""
+    if v == 0.0:
+        return "0"
+    return f"<{ROUND_OFF:g}" if v < ROUND_OFF else f"{v:.3g}"
+
+
 def round_trip_frame(trips) -> pd.DataFrame:
     rows = []
     for t in trips:
         row = {"scene": t.scene, "exported": t.refused is None,
                "refused": t.refused or ""}
         for c in CATEGORIES:
-            row[c] = t.worst.get(c, math.nan) if t.refused is None else math.nan
-        row["rotary_inertia"] = t.worst.get("rotary_inertia", math.nan)
+            row[c] = _bucket(t.worst.get(c) if t.refused is None else None)
+        row["rotary_inertia"] = _bucket(t.worst.get("rotary_inertia"))
         row["own_segments"] = " ".join(str(k) for k in t.own_segments)
         rows.append(row)
     return pd.DataFrame(rows)
@@ -47,7 +62,7 @@ def write(pub: pd.DataFrame, profiles: dict, corpus: pd.DataFrame, trips: pd.Dat
     out.mkdir(parents=True, exist_ok=True)
     pub.to_csv(out / "published.csv", index=False, float_format="%.10g")
     corpus.to_csv(out / "corpus.csv", index=False)
-    trips.to_csv(out / "round_trip.csv", index=False, float_format="%.3g")
+    trips.to_csv(out / "round_trip.csv", index=False)
     profile_figure(profiles, out / "profiles.png")
     (out / "report.md").write_text(markdown(pub, corpus, trips))
 
@@ -141,33 +156,37 @@ def markdown(pub: pd.DataFrame, corpus: pd.DataFrame, trips: pd.DataFrame) -> st
     # the round trip
     ex = trips[trips["exported"]]
     own = ex[ex["own_segments"].astype(str).str.len() > 0]
-    worst_cat = {c: ex[c].max() for c in CATEGORIES}
+    worst_cat = {c: _worst(ex[c]) for c in CATEGORIES}
     lines += ["## The round trip of the built-in scenes", "",
               f"Every built-in scene exported to OrcaFlex and imported back: {len(ex)} of "
               f"{len(trips)} exported, the rest refused with the scene key the OrcaFlex "
               "subset cannot express. What comes back is the same scene, translated (the "
               "anchor at x = 0) and, for a 3D scene, turned into the plane of its ends; the "
               "worst difference over the exported scenes, per category (relative; absolute "
-              "in m and deg for positions and angles): "
-              + ", ".join(f"{c} {_diff(v)}" for c, v in worst_cat.items()) + ". "
+              f"in m and deg for positions and angles; below {ROUND_OFF:g}, float round-off, "
+              f"written <{ROUND_OFF:g}): "
+              + ", ".join(f"{c} {v}" for c, v in worst_cat.items()) + ". "
               f"{len(own)} scenes have segments written with a line type of their own (a "
               "buoyancy section, a weight override): the displacement diameter that gives "
               "their weight, the drag diameters and Ca that give their drag and added mass; "
               "their weight, drag and added mass come back exactly, the wall's polar "
               "inertia (which the scene derives from the outer diameter) does not (up to "
-              f"{_diff(ex['rotary_inertia'].max())}).", "",
+              f"{_worst(ex['rotary_inertia'])}).", "",
               md_table(["scene", "outcome"] + list(CATEGORIES) + ["rotary inertia"],
                        [(r["scene"], "exported" if r["exported"] else
                          f"refused: {_short(r['refused'])}",
-                         *[_diff(r[c]) for c in CATEGORIES], _diff(r["rotary_inertia"]))
+                         *[r[c] for c in CATEGORIES], r["rotary_inertia"])
                         for _, r in trips.iterrows()]), ""]
     return "\n".join(lines)
 
 
-def _diff(v) -> str:
-    if v is None or (isinstance(v, float) and math.isnan(v)):
-        return ""
-    return "0" if v == 0.0 else f"{v:.1e}"
+def _worst(col: pd.Series) -> str:
+    """The largest of a column of buckets ('0' < '<1e-12' < a number)."""
+    vals = [v for v in col.fillna("").astype(str) if v]
+    nums = [float(v) for v in vals if not v.startswith("<") and float(v) > 0.0]
+    if nums:
+        return f"{max(nums):.3g}"
+    return f"<{ROUND_OFF:g}" if any(v.startswith("<") for v in vals) else "0"
 
 
 def _short(text: str, n: int = 140) -> str:
