@@ -41,6 +41,7 @@ VERDICTS = {
     "design": {"pass", "reported"},
     "ends": {"pass"},
     "nonlinear": {"pass"},
+    "orcaflex": {"pass"},
 }
 #: the files of a solve that only a dynamic run writes (compare: none of its scenes has one)
 DYNAMIC = {"timeseries.csv", "envelope.csv", "states.npz", "timeseries.png", "envelope.png"}
@@ -100,7 +101,7 @@ def expected_files(name: str, folder: Path) -> set[str]:
 
 
 def test_the_registry_lists_every_study_once():
-    assert len(STUDIES) == len(set(STUDIES)) == 14
+    assert len(STUDIES) == len(set(STUDIES)) == 15
     assert set(VERDICTS) == set(STUDIES) == set(outdir.STUDY_FILES)
 
 
