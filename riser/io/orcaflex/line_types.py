@@ -107,7 +107,7 @@ def line_type(model: Model, obj: dict, u: Units, torsion: bool,
         out["mass_per_length"] = num("MassPerUnitLength") * u.mass_per_length
         ea = get(obj, "EA", "EAx")
         if isinstance(ea, list):
-            ea = ea[0]
+            ea = ea[0] if ea else None
         if isinstance(ea, str) and not _is_number(ea):
             raise ModelError(src, f"{it}.EA", f"refers to {ea!r}: a nonlinear axial "
                              "stiffness is not carried (the scene's EA is one number)")
@@ -208,17 +208,21 @@ def line_type(model: Model, obj: dict, u: Units, torsion: bool,
             dynamics_only("Cm", c, "an inertia coefficient other than 1 + Ca is not carried")
             break
     v = get(obj, "Cl")
-    v = v[0] if isinstance(v, list) else v
+    v = (v[0] if v else None) if isinstance(v, list) else v
     if v is not None and (not _is_number(v) or number(v, src, f"{it}.Cl") != 0.0):
         raise ModelError(src, f"{it}.Cl", f"{v!r}: lift is not modelled")
     for key, what in (("Cs", "slam entry"), ("Ce", "slam exit")):
         v = get(obj, key)
-        v = v[0] if isinstance(v, list) else v
+        v = (v[0] if v else None) if isinstance(v, list) else v
         if v is not None and (not _is_number(v) or number(v, src, f"{it}.{key}") != 0.0):
             dynamics_only(key, v, f"{what} is not modelled")
     if static_only:
         notes.append(f"not carried, acting in dynamics only (the scene is static): "
                      f"{'; '.join(static_only)}")
+    for name, d in (("OD", od), ("NormalDragLiftDiameter", dh),
+                    ("AxialDragLiftDiameter", da)):
+        if not d > 0.0:
+            raise ModelError(src, f"{it}.{name}", f"must be > 0, got {d:g} m")
     out["drag_normal"] = cdn
     out["drag_tangential"] = cda * da / dh
     out["added_mass"] = can * (od / dh) ** 2
@@ -244,9 +248,9 @@ def line_type(model: Model, obj: dict, u: Units, torsion: bool,
         raise ModelError(src, f"{it}.RayleighDampingCoefficients", f"{ray!r}: Rayleigh "
                          "structural damping is not carried")
     mbr = get(obj, "MinRadius")
-    mbr = mbr[0] if isinstance(mbr, list) else mbr
+    mbr = (mbr[0] if mbr else None) if isinstance(mbr, list) else mbr
     if mbr is not None and _is_number(mbr):
-        r = number(mbr, src, f"{it}.MinRadius") * u.length
+        r = number(mbr, src, f"{it}.MinRadius", allow_inf=True) * u.length
         if math.isfinite(r) and r > 0.0:
             out["minimum_bend_radius"] = r
             notes.append("minimum_bend_radius = MinRadius (the bend check)")

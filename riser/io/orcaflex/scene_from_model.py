@@ -178,6 +178,8 @@ def scene_dict(model: Model, line_name: str | None, name: str,
     carry_waves = not statics and bool(_trains_of(env))
     nu = number(get(env, "KinematicViscosity", default=1.35e-6), src,
                 "Environment.KinematicViscosity")
+    if not nu > 0.0:
+        raise ModelError(src, "Environment.KinematicViscosity", f"must be > 0, got {nu:g}")
     re_max = None if carry_waves else max_current_speed(env, u, src) / (nu * u.length ** 2)
     types, type_notes = {}, {}
     lt_objs = {}
@@ -541,9 +543,10 @@ def _end_stiffness(row: dict, u: Units, src: str, item: str) -> float:
             raise ModelError(src, f"{item}.BendingStiffness", f"refers to variable data "
                              f"{v!r} (a nonlinear end stiffness): the scene's flex joint is "
                              "linear")
-    kx = number(vals[0], src, f"{item}.BendingStiffness", allow_none=True)
-    ky = number(vals[1], src, f"{item}.BendingStiffness", allow_none=True) \
-        if len(vals) > 1 else None
+    kx = number(vals[0], src, f"{item}.BendingStiffness", allow_none=True, allow_inf=True) \
+        if vals else None
+    ky = number(vals[1], src, f"{item}.BendingStiffness", allow_none=True,
+                allow_inf=True) if len(vals) > 1 else None
     kx = 0.0 if kx is None else kx
     if ky is not None and ky != kx:
         raise ModelError(src, f"{item}.BendingStiffness", f"x {kx:g} and y {ky:g} differ: "

@@ -218,7 +218,8 @@ def waves(model: Model, env: dict, frame: Frame, u: Units, src: str,
         out["ramp_time"] = tb
     cut = get(env, "WaveKinematicsCutoffDepth")
     if cut is not None and not math.isinf(number(cut, src, "Environment."
-                                                           "WaveKinematicsCutoffDepth")):
+                                                           "WaveKinematicsCutoffDepth",
+                                                 allow_inf=True)):
         raise ModelError(src, "Environment.WaveKinematicsCutoffDepth", f"{cut}: a cut-off "
                          "of the wave kinematics is not carried")
     notes.append(f"Waves: phases referred to WaveOrigin, the lag omega (WaveTimeOrigin + the "
@@ -352,7 +353,7 @@ def _rao_tables(vt: dict, raos: dict, u: Units, src: str, item: str,
                              "RAOSurgeAmp, RAOSurgePhase, ...)")
         out = []
         for r in rows:
-            x = number(get(r, cols[0]), src, f"{item}.RAOs[{k}]")
+            x = number(get(r, cols[0]), src, f"{item}.RAOs[{k}]", allow_inf=True)
             if by.startswith("period"):
                 T = x
             elif "rad/s" in by:

@@ -278,30 +278,35 @@ def get(obj: dict, *names: str, default=None):
     return obj[k] if k is not None else default
 
 
-def number(value, source: str, item: str, allow_none: bool = False) -> float | None:
-    """``value`` as a float: OrcaFlex's numbers, ``Infinity``/``-Infinity``; ``~`` (None:
-    OrcaFlex's default) only when ``allow_none``."""
+def number(value, source: str, item: str, allow_none: bool = False,
+           allow_inf: bool = False) -> float | None:
+    """``value`` as a finite float (OrcaFlex's numbers; PyYAML leaves ``711.2e3`` a
+    string); ``Infinity``/``-Infinity`` only when ``allow_inf`` (an end's stiffness, a
+    limit), ``~`` (None: OrcaFlex's default) only when ``allow_none``; NaN never."""
     if value is None:
         if allow_none:
             return None
         raise ModelError(source, item, "is ~ (OrcaFlex's default, which this import does "
                          "not know here): give the number")
+    got = None
     if isinstance(value, bool):
+        got = None
+    elif isinstance(value, (int, float)):
+        got = float(value)
+    elif isinstance(value, str):
+        t = value.strip().lower()
+        got = {"infinity": math.inf, "+infinity": math.inf, "inf": math.inf,
+               "-infinity": -math.inf, "-inf": -math.inf}.get(t)
+        if got is None:
+            try:
+                got = float(t)
+            except ValueError:
+                got = None
+    if got is None or math.isnan(got):
         raise ModelError(source, item, f"must be a number, got {value!r}")
-    if isinstance(value, (int, float)):
-        return float(value)
-    if isinstance(value, str):
-        t = value.strip()
-        low = t.lower()
-        if low in ("infinity", "+infinity", "inf"):
-            return math.inf
-        if low in ("-infinity", "-inf"):
-            return -math.inf
-        try:
-            return float(t)
-        except ValueError:
-            pass
-    raise ModelError(source, item, f"must be a number, got {value!r}")
+    if math.isinf(got) and not allow_inf:
+        raise ModelError(source, item, f"must be finite, got {value!r}")
+    return got
 
 
 def table(obj: dict, columns: tuple[str, ...], source: str, item: str) -> list[dict] | None:
