@@ -20,7 +20,7 @@ import pytest
 
 from extras import needs_yaml
 from riser.io.orcaflex.scene_from_model import import_model
-from riser.io.orcaflex.sea import _trains_of
+from riser.io.orcaflex.sea import trains_of
 from riser.io.orcaflex.text_file import ModelError, get, number, read_model, table
 from riser.io.orcaflex.units import units_of
 from riser.model.scene import Scene
@@ -141,7 +141,7 @@ def evidence(model, key: str, line: str, statics: bool, message: str) -> str:
         values = {r[1] for r in _variable_rows(model, cd)}
         assert len(values) > 1, "a constant table would be carried"
         if not statics:
-            assert _trains_of(model.section("Environment") or {}), "no waves: carried"
+            assert trains_of(model.section("Environment") or {}), "no waves: carried"
         else:
             assert "Re = " in message
         return f"Cd from variable data ({cd})"

@@ -14,6 +14,12 @@ def _key(k: str) -> str:
     return k if _BARE.match(k) else _string(k)
 
 
+def key(k: str) -> str:
+    """``k`` as a TOML key: bare when it can be, quoted otherwise (the form of the table
+    paths that :func:`dumps`'s ``comments`` are keyed by, e.g. ``line_types."10\" pipe"``)."""
+    return _key(k)
+
+
 def _value(v) -> str:
     if isinstance(v, bool):
         return "true" if v else "false"

@@ -52,10 +52,11 @@ from ...errors import SceneError
 from ...model.scene import Scene
 from ..scene_file import scene_from_dict
 from ..toml_text import dumps
+from ..toml_text import key as toml_key
 from .attachments import attachments
 from .frame import Frame, wrap
 from .line_types import contact_diameter, line_type
-from .sea import _trains_of, current, dynamics, max_current_speed, vessel_motion, waves
+from .sea import trains_of, current, dynamics, max_current_speed, vessel_motion, waves
 from .text_file import Model, ModelError, get, number, read_model, table
 from .units import GRAVITY, Units, units_of
 
@@ -175,7 +176,7 @@ def scene_dict(model: Model, line_name: str | None, name: str,
     segs = list(reversed(sections)) if from_b else list(sections)
     used = list(dict.fromkeys(s["type"] for s in segs))
     contents = _contents(ln, u, src, item, notes)
-    carry_waves = not statics and bool(_trains_of(env))
+    carry_waves = not statics and bool(trains_of(env))
     nu = number(get(env, "KinematicViscosity", default=1.35e-6), src,
                 "Environment.KinematicViscosity")
     if not nu > 0.0:
@@ -239,13 +240,13 @@ def scene_dict(model: Model, line_name: str | None, name: str,
     wv = waves(model, env, frame, u, src, notes) if carry_waves else None
     if wv:
         data["environment"]["waves"] = wv
-    elif statics and _trains_of(env):
+    elif statics and trains_of(env):
         notes.append("--statics: the waves, the vessel's RAOs and the dynamic stages are "
                      "left out (" + ", ".join(f"{get(t, 'WaveType')}" for t in
-                                              _trains_of(env)) + ").")
+                                              trains_of(env)) + ").")
     data["line_types"] = types
     for tname in used:
-        comments[f"line_types.{_toml_key(tname)}"] = type_notes[tname]
+        comments[f"line_types.{toml_key(tname)}"] = type_notes[tname]
     data["segments"] = [{"line_type": s["type"], "length": s["length"],
                          "label": f"OrcaFlex section {s['index'] + 1}"} for s in segs]
     element = min(s["target"] for s in segs if s["target"] is not None) \
@@ -314,11 +315,6 @@ def scene_dict(model: Model, line_name: str | None, name: str,
 
 def _z(frame: Frame, end: dict) -> float:
     return frame.point(end["X"], end["Y"], end["Z"])[2]
-
-
-def _toml_key(k: str) -> str:
-    from ..toml_text import _key
-    return _key(k)
 
 
 def _check_line_options(ln: dict, src: str, item: str, notes: list[str]) -> None:

@@ -121,7 +121,7 @@ def current(env: dict, frame: Frame, u: Units, src: str, notes: list[str]) -> di
     return out
 
 
-def _trains_of(env: dict) -> list[dict]:
+def trains_of(env: dict) -> list[dict]:
     trains = get(env, "WaveTrains")
     if isinstance(trains, list):
         return trains
@@ -141,7 +141,7 @@ def build_up(model: Model, src: str) -> float:
 
 def waves(model: Model, env: dict, frame: Frame, u: Units, src: str,
           notes: list[str]) -> dict | None:
-    trains = _trains_of(env)
+    trains = trains_of(env)
     if not trains:
         return None
     tb = build_up(model, src)
