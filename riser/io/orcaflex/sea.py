@@ -13,9 +13,10 @@
   WaveTimeOrigin, its simulation starts at minus the build-up's duration, the scene's at
   0, so the lag is omega (WaveTimeOrigin + build-up)); a ``JONSWAP`` sea given by Hs, Tp
   and gamma (``WaveJONSWAPParameters: Partially specified``) or an ``ISSC`` sea given by
-  Hs and Tp -> ``[environment.waves.spectrum]`` (the spectrum exact; its components are
-  the scene's equal frequency steps, not OrcaFlex's discretisation: another realisation
-  of the same sea). Stream-function, Stokes and cnoidal waves, spreading, time histories
+  Hs and Tp -> ``[environment.waves.spectrum]`` (the parameters exact; the scene's
+  JONSWAP is normalised as DNV-RP-C205, its Hs within 0.2 % of the given for gamma <= 5;
+  its components are the scene's equal frequency steps, not OrcaFlex's discretisation:
+  another realisation of the sea). Stream-function, Stokes and cnoidal waves, spreading, time histories
   and other spectra are refused. The ramp: the build-up stage (OrcaFlex ramps the waves
   and the vessel's motion over it; the scene's ramp is a half-cosine).
 - The vessel's displacement RAOs (the draught's ``DisplacementRAOs``), when the line hangs
@@ -192,8 +193,12 @@ def waves(model: Model, env: dict, frame: Frame, u: Units, src: str,
             if seed is not None:
                 sp["seed"] = int(number(seed, src, f"{it}.WaveSeed"))
             out["spectrum"] = sp
-            notes.append(f"{it}: a {kind} sea (Hs {hs:g} m, Tp {tp:g} s): the same spectrum, "
-                         "the scene's own components (equal frequency steps) and random "
+            notes.append(f"{it}: a {kind} sea (Hs {hs:g} m, Tp {tp:g} s"
+                         + (f", gamma {sp['gamma']:g}" if "gamma" in sp else "")
+                         + "): the scene's spectrum of these parameters (a JONSWAP "
+                         "normalised as DNV-RP-C205, 1 - 0.287 ln gamma: its Hs within 0.2 % "
+                         "of the given for gamma <= 5, not OrcaFlex's normalisation digit for "
+                         "digit), its own components (equal frequency steps) and random "
                          "phases: another realisation than OrcaFlex's.")
         else:
             raise ModelError(src, f"{it}.WaveType", f"{kind!r}: the scene's waves are Airy "
