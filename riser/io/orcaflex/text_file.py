@@ -24,8 +24,8 @@ from ...errors import SceneError
 #: tables are 100-500 kB; a 50 MB file is not a model to cross-check one line of)
 MAX_BYTES = 50_000_000
 
-INSTALL = ("reading OrcaFlex text data files needs PyYAML: pip install 'riser-verify[orcaflex]' "
-           "(or pip install pyyaml)")
+INSTALL = ("reading OrcaFlex text data files needs PyYAML, the optional extra [orcaflex]: "
+           "pip install -e '.[orcaflex]' (or pip install pyyaml)")
 
 
 class ModelError(SceneError):
@@ -74,7 +74,7 @@ def _yaml():
     try:
         import yaml
     except ImportError:
-        raise SceneError("orcaflex", "", INSTALL) from None
+        raise SceneError("import-orcaflex", "", INSTALL) from None
     return yaml
 
 
