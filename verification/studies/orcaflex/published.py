@@ -1,9 +1,10 @@
 """Public OrcaFlex models with OrcaFlex's own static results, imported and solved by both
 methods (the reproduction of issue 51).
 
-The models are two of Orcina's example models (A01 "Catenary riser" and A01 "Lazy wave
-riser", line "10\\" Lazy Wave Distributed"), saved as OrcaFlex 11.6b text data files in the
-public repository vamseeachanta/digitalmodel, whose OrcFxAPI script ran OrcaFlex's statics
+The models are three of Orcina's example models (A01 "Catenary riser", A01 "Lazy wave
+riser", line "10\\" Lazy Wave Distributed", judged against tolerances; A01 "Steep wave
+riser", line "10\\" Steep Wave1", in a current across its plane, reported), saved as
+OrcaFlex 11.6b text data files in the public repository vamseeachanta/digitalmodel, whose OrcFxAPI script ran OrcaFlex's statics
 on them and wrote the results (docs/references.md, "OrcaFlex example models"). The
 fixtures in ``tests/data/orcaflex/`` hold their parts this suite reads, written by hand
 (``SOURCES.md``).
@@ -42,7 +43,8 @@ class Published:
     line: str
     results: dict                 # quantity -> OrcaFlex's value (kN, kN m)
     source: str
-    tolerance: dict               # quantity -> relative tolerance of both methods
+    tolerance: dict | None        # quantity -> relative tolerance of both methods; None:
+    #                               reported, not judged (a difference not explained)
 
 
 #: OrcaFlex's quantity -> the suite's summary key
@@ -78,6 +80,18 @@ MODELS = (
         "vamseeachanta/digitalmodel: docs/domains/orcaflex/library/tier2_fast/"
         "a01_lazy_wave_riser/validation/results.json (OrcaFlex 11.6b statics)",
         {**TOLERANCES, "end_b_tension": 0.02}),
+    # reported, not judged: the current (0.5 m/s at 75 deg) crosses the line's plane; the
+    # top and anchor tensions agree (0.03 %, 0.5 %), the least tension and the peak
+    # moment differ by -1.7 % and +1.3 %, in the direction of a larger current effect in
+    # OrcaFlex (the suite's own sensitivity: the current moves them by 0.9 % and 2.2 %);
+    # the cause is not found (docs/orcaflex.md)
+    Published(
+        "a01-steep-wave-riser", "a01-steep-wave-riser.yml", '10" Steep Wave1',
+        {"end_a_tension": 87.30346144882958, "end_b_tension": 36.569102878819606,
+         "min_tension": 8.995584311912097, "max_bending_moment": 14.220530884606884},
+        "vamseeachanta/digitalmodel: docs/domains/orcaflex/library/tier2_fast/"
+        "a01_steep_wave_riser/validation/results.json (OrcaFlex 11.6b statics)",
+        None),
 )
 
 
@@ -104,7 +118,12 @@ def solve(model: Published) -> tuple[Scene, list[dict], dict]:
             value = res.summary()[key] / 1000.0
             row[m] = value
             row[f"{m}_rel_diff"] = (value - ref) / abs(ref)
-        row["tolerance"] = model.tolerance[q]
-        row["pass"] = all(abs(row[f"{m}_rel_diff"]) <= row["tolerance"] for m in results)
+        if model.tolerance is None:
+            row["tolerance"] = float("nan")
+            row["pass"] = "reported"
+        else:
+            row["tolerance"] = model.tolerance[q]
+            row["pass"] = all(abs(row[f"{m}_rel_diff"]) <= row["tolerance"]
+                              for m in results)
         rows.append(row)
     return scene, rows, results

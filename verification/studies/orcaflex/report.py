@@ -86,8 +86,10 @@ def profile_figure(profiles: dict, path: Path) -> None:
 
 def markdown(pub: pd.DataFrame, corpus: pd.DataFrame, trips: pd.DataFrame) -> str:
     n_models = pub["model"].nunique()
-    ok = bool(pub["pass"].all())
-    worst = {m: pub.loc[pub[f"{m}_rel_diff"].abs().idxmax()] for m in ("bvp", "vfife")}
+    judged = pub[pub["pass"].astype(str) != "reported"]
+    ok = bool((judged["pass"].astype(str) == "True").all())
+    worst = {m: judged.loc[judged[f"{m}_rel_diff"].abs().idxmax()] for m in ("bvp", "vfife")}
+    rep = pub[pub["pass"].astype(str) == "reported"]
     lines = ["# OrcaFlex models in and out", "", GENERATED_NOTE, "",
              "`riser-verify import-orcaflex` turns one line of an OrcaFlex text data file into "
              "a scene, `riser-verify export-orcaflex` a scene into a text data file OrcaFlex "
@@ -105,8 +107,9 @@ def markdown(pub: pd.DataFrame, corpus: pd.DataFrame, trips: pd.DataFrame) -> st
              "length, the models' shortest segment) on the scene as imported, without "
              "seabed friction: OrcaFlex's statics lay the line 'as laid' with friction 0.5 "
              "and an elastic slip, which the suite's statics do not model. "
-             f"**{'Every' if ok else 'Not every'} quantity within its tolerance**; the "
-             f"largest differences: BVP {worst['bvp']['bvp_rel_diff']:+.2%} "
+             f"**{'Every' if ok else 'Not every'} judged quantity within its tolerance** "
+             f"({judged['model'].nunique()} models); their largest differences: BVP "
+             f"{worst['bvp']['bvp_rel_diff']:+.2%} "
              f"({worst['bvp']['model']} {worst['bvp']['quantity']}), VFIFE "
              f"{worst['vfife']['vfife_rel_diff']:+.2%} ({worst['vfife']['model']} "
              f"{worst['vfife']['quantity']}).", "",
@@ -114,8 +117,10 @@ def markdown(pub: pd.DataFrame, corpus: pd.DataFrame, trips: pd.DataFrame) -> st
                        "VFIFE rel diff", "tolerance", "pass"],
                       [(r["model"], r["quantity"], r["unit"], fmt(r["orcaflex"], 7),
                         fmt(r["bvp"], 7), fmt(r["vfife"], 7), f"{r['bvp_rel_diff']:+.3%}",
-                        f"{r['vfife_rel_diff']:+.3%}", f"{r['tolerance']:.1%}",
-                        bool(r["pass"])) for _, r in pub.iterrows()]), "",
+                        f"{r['vfife_rel_diff']:+.3%}",
+                        "" if r["pass"] == "reported" else f"{r['tolerance']:.1%}",
+                        r["pass"] if r["pass"] == "reported" else r["pass"] is True)
+                       for _, r in pub.iterrows()]), "",
              "The quantities: End A (the hang-off) and End B (the anchor) effective tension, "
              "the least effective tension and the largest bending moment along the line "
              f"(OrcaFlex's; the suite's summary keys {', '.join(k for k, _ in QUANTITIES.values())}). "
@@ -128,7 +133,19 @@ def markdown(pub: pd.DataFrame, corpus: pd.DataFrame, trips: pd.DataFrame) -> st
              "the lazy wave's at the sag bend) is 0.2-0.5 % above OrcaFlex's, which its "
              "own mesh study puts still rising with refinement (9.354, 9.464, 9.502 kN m at "
              "2, 1 and the model's 0.5 m segments for the catenary).", "",
-             "![the two models' static shapes](profiles.png)", "",
+             *([f"Reported, not judged: {', '.join(sorted(set(rep['model'])))}, whose "
+                "current (0.5 m/s) crosses the line's plane (the line leaves it by 5.5 m). "
+                "Its top and anchor tensions agree as the others' do; its least tension "
+                "and peak moment differ by about 1.5 %, in the direction of a larger effect "
+                "of the current in OrcaFlex than in the suite (the suite's own: the current "
+                "raises the least tension by 0.9 % and lowers the peak moment by 2.2 %; "
+                "OrcaFlex's values lie 2.7 % and 3.5 % from the suite's without current). "
+                "Both methods agree with each other to 0.02 %, so the difference is in the "
+                "model, not the solution; its cause (the cross-flow drag, the Reynolds "
+                "number OrcaFlex takes in an oblique flow, its statics' current) is not "
+                "found: the import's 3D current is carried but not verified against "
+                "OrcaFlex.", ""] if len(rep) else []),
+             "![the models' static shapes](profiles.png)", "",
              "`published.csv` holds every digit.", ""]
     # the corpus
     files = corpus["fixture"].nunique()
