@@ -12,7 +12,7 @@ import pandas as pd
 from verification.report.figures import new_figure, save
 from verification.report.markdown import GENERATED_NOTE, fmt, md_table
 
-from .published import MODELS, QUANTITIES
+from .published import QUANTITIES
 
 CATEGORIES = ("sections", "geometry", "environment", "vessel", "attachments", "joints",
               "seabed")
