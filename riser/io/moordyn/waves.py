@@ -42,6 +42,7 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
+from ..angles import wrap_deg
 from .deck import Deck, read_text
 from .tokens import DeckError, comma_message, is_comma_number, is_number
 
@@ -143,10 +144,10 @@ def waves_table(rows: list[Component], where: str, bottom: tuple[float, float],
         d = (math.cos(r.beta), math.sin(r.beta))
         heading = math.degrees(math.atan2(d[0] * ez[0] + d[1] * ez[1],
                                           d[0] * ex[0] + d[1] * ex[1]))
-        lag = _wrap_deg(90.0 - math.degrees(math.atan2(r.amplitude.imag, r.amplitude.real)))
+        lag = wrap_deg(90.0 - math.degrees(math.atan2(r.amplitude.imag, r.amplitude.real)))
         keys[f"environment.waves.trains[{len(trains)}]"] = (where, r.line)
         trains.append({"height": 2.0 * a, "period": 2.0 * math.pi / r.omega,
-                       "heading_deg": _wrap_deg(heading) + 0.0, "phase_deg": lag})
+                       "heading_deg": wrap_deg(heading), "phase_deg": lag})
     if not trains:
         raise DeckError(where, 0, "holds no component with an amplitude (every Re and Im "
                         "is 0): give the waves, or WaveKin 0")
@@ -172,16 +173,6 @@ def waves_table(rows: list[Component], where: str, bottom: tuple[float, float],
                      "half cosine" + (", and MoorDyn ramps the current with them, which the "
                      "scene holds steady" if has_current else "") + ".")
     return table
-
-
-def _wrap_deg(v: float) -> float:
-    """An angle [deg] in (-180, 180]."""
-    w = math.fmod(v, 360.0)
-    if w <= -180.0:
-        w += 360.0
-    elif w > 180.0:
-        w -= 360.0
-    return w
 
 
 def wave_file_text(scene) -> tuple[str, list[str]]:

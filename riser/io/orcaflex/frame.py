@@ -20,21 +20,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-
-def heading(alpha_deg: float, theta_deg: float) -> float:
-    """The scene's heading [deg] (from +x towards +z) of OrcaFlex's direction theta (from
-    X towards Y), the line's plane at azimuth alpha; in (-180, 180]."""
-    return wrap(alpha_deg - theta_deg)
-
-
-def wrap(deg: float) -> float:
-    """An angle in (-180, 180] [deg]."""
-    d = math.fmod(deg, 360.0)
-    if d <= -180.0:
-        d += 360.0
-    elif d > 180.0:
-        d -= 360.0
-    return d + 0.0
+from ..angles import wrap_deg
 
 
 @dataclass(frozen=True)
@@ -66,5 +52,6 @@ class Frame:
         return x, z
 
     def direction(self, theta_deg: float) -> float:
-        """The scene's heading of OrcaFlex's direction ``theta_deg``."""
-        return heading(self.alpha_deg, theta_deg)
+        """The scene's heading [deg] (from +x towards +z, in (-180, 180]) of OrcaFlex's
+        direction ``theta_deg`` (from X towards Y): alpha - theta."""
+        return wrap_deg(self.alpha_deg - theta_deg)

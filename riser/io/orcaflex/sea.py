@@ -35,7 +35,8 @@ from __future__ import annotations
 
 import math
 
-from .frame import Frame, wrap
+from ..angles import wrap_deg
+from .frame import Frame
 from .text_file import Model, ModelError, get, number, table
 from .units import Units
 
@@ -168,7 +169,7 @@ def waves(model: Model, env: dict, frame: Frame, u: Units, src: str,
             T = number(get(t, "WavePeriod"), src, f"{it}.WavePeriod")
             lag = math.degrees(2.0 * math.pi / T * (t0 + tb))
             out["trains"].append({"height": H, "period": T, "heading_deg": heading,
-                                  "phase_deg": wrap(lag)})
+                                  "phase_deg": wrap_deg(lag)})
         elif low in ("jonswap", "issc"):
             if "spectrum" in out:
                 raise ModelError(src, it, "a second irregular sea: the scene holds one")
@@ -391,8 +392,8 @@ def _rao_tables(vt: dict, raos: dict, u: Units, src: str, item: str,
         mirrors.append((lambda d: 180.0 - d, (0, 4, 5)))
     for f, neg in mirrors:
         for d, rows in list(ofx.items()):
-            m = wrap(f(d))
-            if any(abs(wrap(m - e)) < 1e-9 for e in ofx):
+            m = wrap_deg(f(d))
+            if any(abs(wrap_deg(m - e)) < 1e-9 for e in ofx):
                 continue
             ofx[m] = [(T, [(a, p + 180.0 if j in neg else p) for j, (a, p) in enumerate(v)])
                       for T, v in rows]
@@ -401,9 +402,9 @@ def _rao_tables(vt: dict, raos: dict, u: Units, src: str, item: str,
                      "holds its RAOs constant below its shortest and beyond its longest "
                      "period.")
     tables = []
-    for d in sorted(ofx, key=lambda d: wrap(-d)):
+    for d in sorted(ofx, key=lambda d: wrap_deg(-d)):
         rows = ofx[d]
-        entry: dict = {"heading_deg": wrap(-d), "periods": [T for T, _ in rows]}
+        entry: dict = {"heading_deg": wrap_deg(-d), "periods": [T for T, _ in rows]}
         for j, name in enumerate(("surge", "sway", "heave", "roll", "pitch", "yaw")):
             flip = name in ("sway", "pitch")          # sway = -y, pitch = -pitch
             entry[name] = [v[j][0] for _, v in rows]
