@@ -8,17 +8,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from riser.errors import SceneError
 from verification.catalog import resolve
-
-
-def _write(path: Path, text: str, option: str) -> None:
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(text)
-    except OSError as exc:
-        raise SceneError("command line", option, f"cannot write {path} "
-                         f"({exc.strerror or exc})") from None
+from verification.runtime.outdir import output_file, write_file
 
 
 def cmd_import_orcaflex(args) -> int:
@@ -26,14 +17,10 @@ def cmd_import_orcaflex(args) -> int:
     [--statics]``."""
     from riser.io.orcaflex.scene_from_model import import_model
     model = Path(args.model)
-    out = Path(args.out) if args.out else model.with_suffix(".toml")
-    if args.out and (out.is_dir() or args.out.endswith(("/", "\\"))):
-        out = out / f"{model.stem}.toml"
-    if out.resolve() == model.resolve():
-        raise SceneError("command line", "--out", f"{out} is the model itself; give another "
-                         "file for the scene")
+    out = output_file(args.out, model.with_suffix(".toml"), f"{model.stem}.toml", model,
+                      "model")
     text, scene, notes = import_model(model, line=args.line, statics=args.statics)
-    _write(out, text, "--out")
+    write_file(out, text)
     for n in notes:
         print(f"  {n}")
     print(f"{model.name}: line {scene.title!r}, {len(scene.segments)} section(s), "
@@ -45,12 +32,10 @@ def cmd_export_orcaflex(args) -> int:
     """``riser-verify export-orcaflex SCENE [--out MODEL.yml]``."""
     from riser.io.orcaflex.model_from_scene import export_model
     scene = resolve(args.scene)
-    out = Path(args.out) if args.out else Path("out") / scene.name / "orcaflex" / \
-        f"{scene.name}.yml"
-    if args.out and (out.is_dir() or args.out.endswith(("/", "\\"))):
-        out = out / f"{scene.name}.yml"
+    out = output_file(args.out, Path("out") / scene.name / "orcaflex" / f"{scene.name}.yml",
+                      f"{scene.name}.yml")
     text, notes = export_model(scene)
-    _write(out, text, "--out")
+    write_file(out, text)
     for n in notes:
         print(f"  {n}")
     print(f"{scene.name}: one OrcaFlex line, {len(scene.segments)} section(s); wrote {out}")

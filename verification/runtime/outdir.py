@@ -123,6 +123,32 @@ STUDY_FILES = {
 }
 
 
+def output_file(out: str | None, default: Path, name: str, source: Path | None = None,
+                what: str = "") -> Path:
+    """The file a command writes: ``out`` (``--out``: any file name in any folder; an
+    existing folder, or a path ending in a separator, gets ``name`` inside it), else
+    ``default``. With ``source`` (the file read, called ``what``), a SceneError naming
+    ``--out`` when the file written would be it."""
+    path = Path(out) if out else default
+    if out and (path.is_dir() or out.endswith(("/", "\\"))):
+        path = path / name
+    if source is not None and path.resolve() == source.resolve():
+        raise SceneError("command line", "--out", f"{path} is the {what} itself; give "
+                         "another file for the scene")
+    return path
+
+
+def write_file(path: Path, text: str, option: str = "--out") -> None:
+    """Write ``text`` to ``path`` (its folders made); a SceneError naming ``option`` when
+    it cannot be written."""
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(text)
+    except OSError as exc:
+        raise SceneError("command line", option, f"cannot write {path} "
+                         f"({exc.strerror or exc})") from None
+
+
 def check_writable(folder: str | Path) -> None:
     """Raise :class:`SceneError` (exit 2, naming ``--out``) unless files can be written in
     ``folder``: the folder is created if missing (and the folders above it), a probe file

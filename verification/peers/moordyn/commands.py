@@ -8,8 +8,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from riser.errors import SceneError
 from verification.catalog import resolve
+from verification.runtime.outdir import output_file, write_file
 
 
 def cmd_import_moordyn(args) -> int:
@@ -18,19 +18,9 @@ def cmd_import_moordyn(args) -> int:
     folder or a path ending in a separator gets DECK.toml inside it)."""
     from riser.io.moordyn.scene_from_deck import import_deck
     deck = Path(args.deck)
-    out = Path(args.out) if args.out else deck.with_suffix(".toml")
-    if args.out and (out.is_dir() or args.out.endswith(("/", "\\"))):
-        out = out / f"{deck.stem}.toml"
-    if out.resolve() == deck.resolve():
-        raise SceneError("command line", "--out", f"{out} is the deck itself; give another "
-                         "file for the scene")
+    out = output_file(args.out, deck.with_suffix(".toml"), f"{deck.stem}.toml", deck, "deck")
     text, scene, notes = import_deck(deck)
-    try:
-        out.parent.mkdir(parents=True, exist_ok=True)
-        out.write_text(text)
-    except OSError as exc:
-        raise SceneError("command line", "--out", f"cannot write {out} "
-                         f"({exc.strerror or exc})") from None
+    write_file(out, text)
     for n in notes:
         print(f"  {n}")
     print(f"{deck.name}: {len(scene.segments)} segment(s), {scene.total_length:g} m; wrote {out}")
