@@ -19,7 +19,7 @@ from .text_file import Model, ModelError, get, number, table
 from .units import Units
 
 
-def _pair(value, src: str, item: str, allow_none_second: bool = True):
+def _pair(value, src: str, item: str):
     """OrcaFlex's [x, y] (y ~: same as x) or a scalar: (x, y)."""
     if isinstance(value, list):
         if not value or len(value) > 3:

@@ -50,13 +50,14 @@ from pathlib import Path
 
 from ...errors import SceneError
 from ...model.scene import Scene
+from ..angles import wrap_deg
 from ..scene_file import scene_from_dict
 from ..toml_text import dumps
 from ..toml_text import key as toml_key
 from .attachments import attachments
-from .frame import Frame, wrap
+from .frame import Frame
 from .line_types import contact_diameter, line_type
-from .sea import trains_of, current, dynamics, max_current_speed, vessel_motion, waves
+from .sea import current, dynamics, max_current_speed, trains_of, vessel_motion, waves
 from .text_file import Model, ModelError, get, number, read_model, table
 from .units import GRAVITY, Units, units_of
 
@@ -159,7 +160,8 @@ def scene_dict(model: Model, line_name: str | None, name: str,
     _check_line_options(ln, src, item, notes)
     env = model.section("Environment") or {}
     sections = _sections(ln, u, src, item)
-    ends = _ends(model, ln, u, src, item)
+    depth, z_surface, depth_item = _depth(env, u, src)
+    ends = _ends(model, ln, u, src, item, z_surface - depth)
     a, b = ends                      # End A, End B: each a dict (see _ends)
     if a["kind"] == FREE and b["kind"] == FREE:
         raise ModelError(src, f"{item}.Connection", "both ends are Free: a scene's line "
@@ -195,7 +197,6 @@ def scene_dict(model: Model, line_name: str | None, name: str,
                                  f"(ContentsDensity) but this line type no bore (ID)")
             types[tname]["contents_density"] = contents
     # the frame: the plane through the ends, the seabed raised by the contact radius
-    depth, z_surface, depth_item = _depth(env, u, src)
     bottom_type = lt_objs[segs[0]["type"]]
     r_contact = contact_diameter(bottom_type, u, src) / 2.0
     free = bottom["kind"] == FREE
@@ -203,7 +204,7 @@ def scene_dict(model: Model, line_name: str | None, name: str,
     span = math.hypot(dX, dY)
     alpha = math.degrees(math.atan2(dY, dX)) if span > 1e-9 else 0.0
     z_seabed_of = z_surface - depth
-    frame = Frame(bottom["X"], bottom["Y"], wrap(alpha), z_seabed_of + r_contact,
+    frame = Frame(bottom["X"], bottom["Y"], wrap_deg(alpha), z_seabed_of + r_contact,
                   depth - r_contact)
     if span <= 1e-9:
         notes.append("The two ends are vertically aligned: the scene's x-y plane is "
@@ -428,9 +429,11 @@ def _density(env: dict, u: Units, src: str) -> float:
     return rho * u.density
 
 
-def _ends(model: Model, ln: dict, u: Units, src: str, item: str) -> list[dict]:
+def _ends(model: Model, ln: dict, u: Units, src: str, item: str,
+          z_seabed: float) -> list[dict]:
     """End A and End B: each {end, kind, what, X, Y, Z (global, m), azimuth, declination
-    (deg, global), stiffness (N m/rad or None: 0 / inf), row}."""
+    (deg, global), stiffness (N m/rad or None: 0 / inf), row}; ``z_seabed``: OrcaFlex's
+    seabed's Z [m] (an Anchored end's z is above it)."""
     cols = ("Connection", "ConnectionX", "ConnectionY", "ConnectionZ")
     rows = table(ln, cols, src, item)
     if rows is None:
@@ -467,10 +470,8 @@ def _ends(model: Model, ln: dict, u: Units, src: str, item: str) -> list[dict]:
             if rel is not None and str(rel).lower() not in ("seabed",):
                 raise ModelError(src, f"{it}.zRelativeTo", f"{rel!r}: an Anchored end's z "
                                  "is read relative to the seabed (OrcaFlex's default)")
-            env = model.section("Environment") or {}
-            depth, z_surf, _ = _depth(env, u, src)
             e.update(kind=ANCHORED, what="Anchored", X=x * u.length, Y=y * u.length,
-                     Z=z_surf - depth + z * u.length)
+                     Z=z_seabed + z * u.length)
         elif low == FREE:
             if None in (x, y, z):
                 raise ModelError(src, it, "a Free end needs its starting position")

@@ -67,10 +67,6 @@ class Units:
         """force x length^2 -> N m2."""
         return self.force * self.length ** 2
 
-    @property
-    def acceleration(self) -> float:
-        return self.length
-
 
 def units_of(model: Model) -> Units:
     """The units of ``model`` (``General.UnitsSystem``; SI when the file gives none, as

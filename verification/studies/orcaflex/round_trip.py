@@ -31,7 +31,6 @@ from pathlib import Path
 from riser.errors import SceneError
 from riser.io.orcaflex.model_from_scene import export_model
 from riser.io.orcaflex.scene_from_model import import_model
-from riser.model.ends import FixedEnds
 from riser.model.scene import Scene
 from riser.model.sections import segment_properties
 
@@ -196,9 +195,3 @@ def built_in_round_trips() -> list[RoundTrip]:
     """The round trip of every built-in scene, by name."""
     from verification.catalog import builtin_paths, resolve
     return [round_trip(resolve(name)) for name in sorted(builtin_paths())]
-
-
-def expressible(scene: Scene) -> bool:
-    """A scene the export's subset expresses: fixed ends (the rest is said by the export's
-    refusal)."""
-    return isinstance(scene.ends, FixedEnds)
